@@ -1,0 +1,158 @@
+// meshnbv info: what a scene holds, and what is wrong with it.
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <iomanip>
+#include <iostream>
+#include <memory>
+
+#include <nlohmann/json.hpp>
+
+#include "commands.h"
+#include "meshnbv/error.h"
+#include "meshnbv/io/file_util.h"
+
+namespace meshnbv::cli {
+namespace {
+
+struct Range {
+  double lo = INFINITY, hi = -INFINITY;
+  void add(double v) {
+    lo = std::min(lo, v);
+    hi = std::max(hi, v);
+  }
+  nlohmann::json to_json() const {
+    return lo <= hi ? nlohmann::json{lo, hi} : nlohmann::json(nullptr);
+  }
+};
+
+nlohmann::json summarize(const Scene& scene) {
+  using nlohmann::json;
+  const TriangleMesh& mesh = scene.mesh;
+  const MeshCheck check = check_mesh(mesh);
+  const BoundingBox box = mesh.bounding_box();
+  json out;
+  out["scene"] = scene.source;
+  out["format"] = scene.format;
+  json m;
+  m["file"] = scene.mesh_path.empty() ? json(nullptr) : json(scene.mesh_path);
+  m["vertices"] = mesh.num_vertices();
+  m["faces"] = mesh.num_faces();
+  m["area"] = mesh.total_area();
+  m["bounding_box"] = box.empty() ? json(nullptr)
+                                  : json{{"min", {box.min.x(), box.min.y(), box.min.z()}},
+                                         {"max", {box.max.x(), box.max.y(), box.max.z()}},
+                                         {"diagonal", box.diagonal()}};
+  m["degenerate_faces"] = check.degenerate_faces;
+  m["boundary_edges"] = check.boundary_edges;
+  m["nonmanifold_edges"] = check.nonmanifold_edges;
+  m["unreferenced_vertices"] = check.unreferenced_vertices;
+  m["closed"] = mesh.empty() ? false : check.closed();
+  m["face_attributes"] = json::array();
+  for (const auto& [name, values] : mesh.face_attributes) m["face_attributes"].push_back(name);
+  out["mesh"] = m;
+
+  json v;
+  Range fx, fy, cx, cy, dist;
+  std::size_t with_image = 0, image_present = 0, unused = 0;
+  std::map<std::string, int> resolutions;
+  const Vec3 centre = box.empty() ? Vec3::Zero() : box.center();
+  for (const auto& view : scene.views) {
+    const PinholeCamera& c = view.camera;
+    fx.add(c.fx);
+    fy.add(c.fy);
+    cx.add(c.cx);
+    cy.add(c.cy);
+    dist.add((c.center() - centre).norm());
+    ++resolutions[std::to_string(c.width) + "x" + std::to_string(c.height)];
+    if (view.has_image()) {
+      ++with_image;
+      std::error_code ec;
+      if (std::filesystem::exists(view.image_path, ec)) ++image_present;
+    }
+    if (!view.used) ++unused;
+  }
+  v["count"] = scene.views.size();
+  v["with_image"] = with_image;
+  v["image_files_present"] = image_present;
+  v["without_image"] = scene.views.size() - with_image;
+  v["marked_unused"] = unused;
+  v["resolutions"] = resolutions;
+  v["fx"] = fx.to_json();
+  v["fy"] = fy.to_json();
+  v["cx"] = cx.to_json();
+  v["cy"] = cy.to_json();
+  v["center_distance_to_mesh_box_center"] = dist.to_json();
+  out["views"] = v;
+  out["warnings"] = scene.warnings;
+  return out;
+}
+
+void print_text(const nlohmann::json& s) {
+  auto num = [](const nlohmann::json& j) {
+    std::ostringstream ss;
+    ss << std::setprecision(6) << j.get<double>();
+    return ss.str();
+  };
+  auto range = [&](const nlohmann::json& j) {
+    return j.is_null() ? std::string("-") : num(j[0]) + " .. " + num(j[1]);
+  };
+  const auto& m = s["mesh"];
+  std::cout << "scene      " << s["scene"].get<std::string>() << " ("
+            << s["format"].get<std::string>() << ")\n";
+  std::cout << "mesh       "
+            << (m["file"].is_null() ? std::string("(none)") : m["file"].get<std::string>())
+            << "\n";
+  std::cout << "  vertices " << m["vertices"] << ", faces " << m["faces"] << ", area "
+            << num(m["area"]) << "\n";
+  if (!m["bounding_box"].is_null()) {
+    const auto& b = m["bounding_box"];
+    std::cout << "  bbox     (" << num(b["min"][0]) << ", " << num(b["min"][1]) << ", "
+              << num(b["min"][2]) << ") .. (" << num(b["max"][0]) << ", " << num(b["max"][1])
+              << ", " << num(b["max"][2]) << "), diagonal " << num(b["diagonal"]) << "\n";
+  }
+  std::cout << "  checks   degenerate faces " << m["degenerate_faces"] << ", boundary edges "
+            << m["boundary_edges"] << ", non-manifold edges " << m["nonmanifold_edges"]
+            << ", unreferenced vertices " << m["unreferenced_vertices"]
+            << (m["closed"].get<bool>() ? ", closed" : "") << "\n";
+  const auto& v = s["views"];
+  std::cout << "views      " << v["count"] << " (" << v["with_image"] << " with image, "
+            << v["image_files_present"] << " image files present, " << v["without_image"]
+            << " candidates without image)\n";
+  std::cout << "  size     ";
+  bool first = true;
+  for (const auto& [res, n] : v["resolutions"].items()) {
+    std::cout << (first ? "" : ", ") << res << " x" << n;
+    first = false;
+  }
+  std::cout << "\n  fx       " << range(v["fx"]) << "\n  fy       " << range(v["fy"])
+            << "\n  cx       " << range(v["cx"]) << "\n  cy       " << range(v["cy"])
+            << "\n  camera distance to mesh box centre " << range(v["center_distance_to_mesh_box_center"])
+            << "\n";
+  for (const auto& w : s["warnings"]) std::cout << "warning: " << w.get<std::string>() << "\n";
+}
+
+}  // namespace
+
+void add_info_command(CLI::App& app) {
+  auto input = std::make_shared<SceneInput>();
+  auto json_out = std::make_shared<std::string>();
+  CLI::App* cmd = app.add_subcommand("info", "Mesh statistics and checks, and a summary of the views");
+  input->add_to(cmd);
+  cmd->add_option("--json", *json_out, "Also write the summary as JSON to this file ('-' = stdout)");
+  cmd->callback([input, json_out]() {
+    const Scene scene = input->read();
+    const nlohmann::json summary = summarize(scene);
+    if (*json_out == "-") {
+      std::cout << summary.dump(2) << "\n";
+      return;
+    }
+    print_text(summary);
+    if (!json_out->empty()) {
+      io::write_atomically(*json_out, [&](std::ostream& out) { out << summary.dump(2) << "\n"; });
+      std::cout << "summary written to " << *json_out << "\n";
+    }
+  });
+}
+
+}  // namespace meshnbv::cli

@@ -1,0 +1,23 @@
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+#include "meshnbv/io/scene_io.h"
+
+namespace meshnbv::cli {
+
+// Options every command that reads a scene shares (same names everywhere).
+struct SceneInput {
+  std::string path;
+  std::string format = "auto";
+  std::string mesh;
+  std::string image_dir;
+  void add_to(CLI::App* cmd);
+  Scene read() const;
+};
+
+// Subcommands run their work in a callback and throw meshnbv::Error on failure.
+void add_info_command(CLI::App& app);
+void add_convert_command(CLI::App& app);
+
+}  // namespace meshnbv::cli

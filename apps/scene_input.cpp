@@ -1,0 +1,24 @@
+#include "commands.h"
+
+namespace meshnbv::cli {
+
+void SceneInput::add_to(CLI::App* cmd) {
+  cmd->add_option("scene", path,
+                  "Scene: a .mlp project, a .json scene, a Middlebury folder (*_par.txt), a COLMAP "
+                  "text model folder (cameras.txt, images.txt) or Bundler's bundle.out")
+      ->required();
+  cmd->add_option("--format", format, "Scene format instead of guessing from the path")
+      ->check(CLI::IsMember({"auto", "mlp", "json", "middlebury", "colmap", "bundler"}));
+  cmd->add_option("--mesh", mesh, "Mesh (.ply, .obj, .off) to use instead of the scene's own");
+  cmd->add_option("--image-dir", image_dir, "Folder of the images (COLMAP, Bundler)");
+}
+
+Scene SceneInput::read() const {
+  io::SceneReadOptions options;
+  options.format = io::parse_scene_format(format);
+  options.mesh_path = mesh;
+  options.image_dir = image_dir;
+  return io::read_scene(path, options);
+}
+
+}  // namespace meshnbv::cli

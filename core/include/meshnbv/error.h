@@ -1,0 +1,39 @@
+// The one error type of the MeshNBV core. Every reader, checker and algorithm
+// throws meshnbv::Error with a message a user can act on; front ends translate
+// it at their edge (CLI: one line on stderr and a non-zero exit; VTK:
+// vtkErrorMacro; MeshLab: Log + failed filter).
+#pragma once
+
+#include <stdexcept>
+#include <string>
+
+namespace meshnbv {
+
+class Error : public std::runtime_error {
+ public:
+  explicit Error(const std::string& message);
+  // `file` is the input being read, `line` a 1-based line number (or -1),
+  // `element` names the element at fault (e.g. "face 12", "raster 'a.png'").
+  Error(const std::string& message, const std::string& file, long line = -1,
+        const std::string& element = {});
+
+  const std::string& file() const noexcept { return file_; }
+  long line() const noexcept { return line_; }
+  const std::string& element() const noexcept { return element_; }
+  // The message without the file/line prefix.
+  const std::string& reason() const noexcept { return reason_; }
+
+ private:
+  std::string reason_;
+  std::string file_;
+  long line_ = -1;
+  std::string element_;
+};
+
+// Thrown when a progress callback asked to stop.
+class Cancelled : public Error {
+ public:
+  Cancelled() : Error("cancelled by the user") {}
+};
+
+}  // namespace meshnbv

@@ -1,0 +1,87 @@
+// 8-bit images loaded through OpenCV (PNG, JPEG, TIFF, ...) and a bounded,
+// thread-safe cache so that scenes with hundreds of large photos never hold
+// them all in memory.
+#pragma once
+
+#include <cstdint>
+#include <list>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+namespace meshnbv {
+
+class Image {
+ public:
+  Image() = default;
+  // Black image; channels 1 (grey) or 3 (RGB).
+  Image(int width, int height, int channels);
+
+  // Throws Error when the file is missing or does not decode. Grey images
+  // stay grey, colour images become RGB (alpha dropped), 16-bit ones are
+  // scaled to 8 bits.
+  static Image load(const std::string& path);
+  // Writes PNG/JPEG/TIFF by extension; throws Error on failure.
+  void save(const std::string& path) const;
+
+  int width() const { return width_; }
+  int height() const { return height_; }
+  int channels() const { return channels_; }
+  bool empty() const { return data_.empty(); }
+  std::size_t bytes() const { return data_.size(); }
+  const std::uint8_t* data() const { return data_.data(); }
+  std::uint8_t* data() { return data_.data(); }
+  std::uint8_t* pixel(int x, int y) { return &data_[(std::size_t(y) * width_ + x) * channels_]; }
+  const std::uint8_t* pixel(int x, int y) const {
+    return &data_[(std::size_t(y) * width_ + x) * channels_];
+  }
+
+  // 0.299 R + 0.587 G + 0.114 B, in [0, 1] (grey: value / 255).
+  float luminance(int x, int y) const;
+
+  // Bilinear sampling at continuous coordinates with pixel centres at
+  // integers. Defined on [0, W-1] x [0, H-1] (the SPEC's "inside the
+  // image"); returns false outside, and for NaN coordinates, leaving the
+  // output untouched. On the last row/column it interpolates with weight 0
+  // on the missing neighbour, so the border value is exact.
+  bool sample_luminance(double x, double y, float* out) const;
+  // Per channel in [0, 1]; a grey image gives three equal values.
+  bool sample_rgb(double x, double y, float out[3]) const;
+
+ private:
+  int width_ = 0, height_ = 0, channels_ = 0;
+  std::vector<std::uint8_t> data_;
+};
+
+// Least-recently-used cache of decoded images, bounded in bytes. get() is
+// thread-safe; a returned image stays valid while the caller holds it even
+// if the cache evicts it.
+class ImageCache {
+ public:
+  explicit ImageCache(std::size_t max_bytes = std::size_t(1) << 30);
+
+  std::shared_ptr<const Image> get(const std::string& path);
+  void clear();
+  std::size_t bytes_held() const;
+  std::size_t max_bytes() const { return max_bytes_; }
+  std::size_t size() const;
+  std::size_t loads() const;  // decodes done so far (misses)
+
+ private:
+  struct Entry {
+    std::shared_ptr<const Image> image;
+    std::list<std::string>::iterator lru_position;
+  };
+  void evict_locked();
+
+  std::size_t max_bytes_;
+  mutable std::mutex mutex_;
+  std::list<std::string> lru_;  // front = most recent
+  std::unordered_map<std::string, Entry> entries_;
+  std::size_t bytes_ = 0;
+  std::size_t loads_ = 0;
+};
+
+}  // namespace meshnbv

@@ -1,0 +1,52 @@
+// Small helpers shared by the readers and writers.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace meshnbv::io {
+
+// Whole file as bytes; throws Error if missing or unreadable.
+std::string read_file(const std::string& path);
+std::uintmax_t file_size(const std::string& path);
+// Lower-case extension with the dot (".ply"); empty if none.
+std::string extension_lower(const std::string& path);
+
+// Writes through a temporary file in the same folder, renamed over `path`
+// only when `write` returned normally, so a failure never leaves a
+// half-written file. Throws Error if `path` exists and !overwrite.
+void write_atomically(const std::string& path, const std::function<void(std::ostream&)>& write,
+                      bool overwrite = true, bool binary = false);
+
+// Throws Error if path exists and overwrite is false.
+void check_can_write(const std::string& path, bool overwrite);
+
+// `path` relative to folder `base` when possible (lexically), else absolute.
+std::string relative_to(const std::string& path, const std::string& base);
+// Resolve `path` against folder `base` when it is relative.
+std::string resolve(const std::string& path, const std::string& base);
+
+// Whitespace tokenizer with line tracking for the text formats.
+class TextTokens {
+ public:
+  TextTokens(std::string text, std::string file);
+  bool next_line(std::vector<std::string>* tokens);  // skips blank lines
+  long line() const { return line_; }
+  const std::string& file() const { return file_; }
+
+ private:
+  std::string text_;
+  std::string file_;
+  std::size_t pos_ = 0;
+  long line_ = 0;
+};
+
+// Strict numeric parsing: the whole token must be a finite number.
+double parse_double(const std::string& token, const std::string& file, long line,
+                    const std::string& what);
+long long parse_int(const std::string& token, const std::string& file, long line,
+                    const std::string& what);
+
+}  // namespace meshnbv::io

@@ -1,0 +1,60 @@
+// Scene formats and their detection from a path.
+#pragma once
+
+#include <string>
+
+#include "meshnbv/scene.h"
+
+namespace meshnbv::io {
+
+enum class SceneFormat { Auto, Mlp, Json, Middlebury, Colmap, Bundler };
+
+// "auto", "mlp", "json", "middlebury", "colmap", "bundler"; throws Error otherwise.
+SceneFormat parse_scene_format(const std::string& name);
+std::string scene_format_name(SceneFormat format);
+// From the path: *.mlp, *.json, a folder (or file) with *_par.txt, a folder
+// with cameras.txt + images.txt, bundle.out (or a folder holding it).
+// Throws Error naming what was looked for when nothing matches.
+SceneFormat detect_scene_format(const std::string& path);
+
+struct SceneReadOptions {
+  SceneFormat format = SceneFormat::Auto;
+  // Mesh to attach to formats that carry none (Middlebury, COLMAP, Bundler),
+  // or to replace the project's own.
+  std::string mesh_path;
+  // Folder of the images for formats that name them relatively (COLMAP, Bundler).
+  std::string image_dir;
+};
+
+Scene read_scene(const std::string& path, const SceneReadOptions& options = {});
+
+struct SceneWriteOptions {
+  SceneFormat format = SceneFormat::Auto;  // Auto: from the output path
+  bool overwrite = false;
+};
+
+// .mlp and .json write the mesh beside them as <stem>_mesh.ply when the
+// scene has one; a COLMAP folder gets cameras.txt, images.txt, points3D.txt
+// (and meshed.ply). Middlebury and Bundler are read-only.
+void write_scene(const Scene& scene, const std::string& path,
+                 const SceneWriteOptions& options = {});
+
+// Each format's own entry points.
+Scene read_mlp(const std::string& path);
+void write_mlp(const Scene& scene, const std::string& path, const std::string& mesh_file,
+               bool overwrite);
+Scene read_json_scene(const std::string& path);
+void write_json_scene(const Scene& scene, const std::string& path, const std::string& mesh_file,
+                      bool overwrite);
+// `path`: the *_par.txt file or the folder holding exactly one.
+Scene read_middlebury(const std::string& path);
+// `path`: the folder with cameras.txt and images.txt. Images are looked up
+// in `image_dir`, else <path>/images, <path>/../images, <path>/../../images,
+// else <path> itself; the first folder holding the first image wins.
+Scene read_colmap(const std::string& path, const std::string& image_dir = {});
+void write_colmap(const Scene& scene, const std::string& folder, bool overwrite);
+// `path`: bundle.out or its folder; the image list is list.txt beside it
+// (or ../list.txt). Image sizes are read from the image files.
+Scene read_bundler(const std::string& path, const std::string& image_dir = {});
+
+}  // namespace meshnbv::io

@@ -1,0 +1,142 @@
+#include "meshnbv/io/file_util.h"
+
+#include <atomic>
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <sstream>
+#include <unistd.h>
+
+#include "meshnbv/error.h"
+
+namespace fs = std::filesystem;
+
+namespace meshnbv::io {
+
+std::string read_file(const std::string& path) {
+  std::error_code ec;
+  if (!fs::exists(path, ec)) throw Error("file not found", path);
+  if (fs::is_directory(path, ec)) throw Error("is a folder, expected a file", path);
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw Error(std::string("cannot open: ") + std::strerror(errno), path);
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  if (in.bad()) throw Error("read error", path);
+  return ss.str();
+}
+
+std::uintmax_t file_size(const std::string& path) {
+  std::error_code ec;
+  auto size = fs::file_size(path, ec);
+  if (ec) throw Error("cannot stat: " + ec.message(), path);
+  return size;
+}
+
+std::string extension_lower(const std::string& path) {
+  std::string ext = fs::path(path).extension().string();
+  for (auto& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return ext;
+}
+
+void check_can_write(const std::string& path, bool overwrite) {
+  std::error_code ec;
+  if (!overwrite && fs::exists(path, ec))
+    throw Error("output exists; pass --overwrite to replace it", path);
+}
+
+void write_atomically(const std::string& path, const std::function<void(std::ostream&)>& write,
+                      bool overwrite, bool binary) {
+  check_can_write(path, overwrite);
+  fs::path target(path);
+  fs::path folder = target.parent_path();
+  std::error_code ec;
+  if (!folder.empty() && !fs::exists(folder, ec)) {
+    fs::create_directories(folder, ec);
+    if (ec) throw Error("cannot create folder: " + ec.message(), folder.string());
+  }
+  static std::atomic<unsigned> counter{0};
+  fs::path tmp = target;
+  tmp += ".tmp" + std::to_string(::getpid()) + "_" + std::to_string(counter++);
+  try {
+    {
+      std::ofstream out(tmp, binary ? std::ios::binary | std::ios::out : std::ios::out);
+      if (!out) throw Error(std::string("cannot write: ") + std::strerror(errno), path);
+      write(out);
+      out.flush();
+      if (!out) throw Error("write failed (disk full?)", path);
+    }
+    fs::rename(tmp, target, ec);
+    if (ec) throw Error("cannot move the finished file into place: " + ec.message(), path);
+  } catch (...) {
+    fs::remove(tmp, ec);
+    throw;
+  }
+}
+
+std::string relative_to(const std::string& path, const std::string& base) {
+  if (path.empty()) return path;
+  fs::path abs_path = fs::absolute(path).lexically_normal();
+  fs::path abs_base = fs::absolute(base.empty() ? "." : base).lexically_normal();
+  fs::path rel = abs_path.lexically_relative(abs_base);
+  if (rel.empty()) return abs_path.string();
+  return rel.generic_string();
+}
+
+std::string resolve(const std::string& path, const std::string& base) {
+  if (path.empty()) return path;
+  fs::path p(path);
+  if (p.is_absolute() || base.empty()) return p.lexically_normal().string();
+  return (fs::path(base) / p).lexically_normal().string();
+}
+
+TextTokens::TextTokens(std::string text, std::string file)
+    : text_(std::move(text)), file_(std::move(file)) {}
+
+bool TextTokens::next_line(std::vector<std::string>* tokens) {
+  tokens->clear();
+  while (pos_ < text_.size()) {
+    std::size_t end = text_.find('\n', pos_);
+    if (end == std::string::npos) end = text_.size();
+    ++line_;
+    std::size_t i = pos_;
+    pos_ = end + 1;
+    while (i < end) {
+      while (i < end && std::isspace(static_cast<unsigned char>(text_[i]))) ++i;
+      std::size_t start = i;
+      while (i < end && !std::isspace(static_cast<unsigned char>(text_[i]))) ++i;
+      if (i > start) tokens->emplace_back(text_, start, i - start);
+    }
+    if (!tokens->empty()) return true;
+  }
+  return false;
+}
+
+double parse_double(const std::string& token, const std::string& file, long line,
+                    const std::string& what) {
+  const char* begin = token.c_str();
+  char* end = nullptr;
+  errno = 0;
+  double value = std::strtod(begin, &end);
+  if (end == begin || *end != '\0')
+    throw Error("expected a number for " + what + ", got '" + token + "'", file, line);
+  if (!std::isfinite(value) || errno == ERANGE)
+    throw Error(what + " is not a finite number ('" + token + "')", file, line);
+  return value;
+}
+
+long long parse_int(const std::string& token, const std::string& file, long line,
+                    const std::string& what) {
+  const char* begin = token.c_str();
+  char* end = nullptr;
+  errno = 0;
+  long long value = std::strtoll(begin, &end, 10);
+  if (end == begin || *end != '\0' || errno == ERANGE)
+    throw Error("expected an integer for " + what + ", got '" + token + "'", file, line);
+  return value;
+}
+
+}  // namespace meshnbv::io

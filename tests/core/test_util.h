@@ -1,0 +1,43 @@
+// Helpers shared by the core tests.
+#pragma once
+
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+
+#include <gtest/gtest.h>
+
+namespace meshnbv::test {
+
+inline std::string data_dir() { return MESHNBV_TEST_DATA_DIR; }
+
+// A fresh, empty folder for one test.
+inline std::string temp_dir(const std::string& name) {
+  const char* root = std::getenv("MESHNBV_TMP");
+  std::filesystem::path dir = std::filesystem::path(root ? root : "/tmp/meshnbv_tests") / name;
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir.string();
+}
+
+// The Middlebury templeRing folder, or empty when absent.
+inline std::string temple_ring_dir() {
+  const char* env = std::getenv("MESHNBV_SHARED_DATA");
+  std::filesystem::path root = env ? env : MESHNBV_SHARED_DATA_DIR;
+  std::filesystem::path dir = root / "middlebury" / "templeRing";
+  if (std::filesystem::exists(dir / "templeR_par.txt")) return dir.string();
+  return {};
+}
+
+}  // namespace meshnbv::test
+
+#define MESHNBV_EXPECT_ERROR_CONTAINS(statement, fragment)                              \
+  do {                                                                                  \
+    try {                                                                               \
+      statement;                                                                        \
+      ADD_FAILURE() << "expected meshnbv::Error containing '" << (fragment) << "'";     \
+    } catch (const meshnbv::Error& e_) {                                                \
+      EXPECT_NE(std::string(e_.what()).find(fragment), std::string::npos)               \
+          << "message was: " << e_.what();                                              \
+    }                                                                                   \
+  } while (0)
