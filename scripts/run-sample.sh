@@ -1,0 +1,14 @@
+#!/usr/bin/env bash
+# The main job on the bundled sample project: install dependencies, build,
+# run, and say where the results went.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+scripts/install-deps.sh
+BUILD=${MESHNBV_BUILD_DIR:-build/release}
+cmake -S . -B "$BUILD" -G Ninja -DCMAKE_BUILD_TYPE=Release -DMESHNBV_BUILD_TESTS=OFF \
+  -DMESHNBV_BUILD_BENCH=OFF -DMESHNBV_BUILD_VTK=ON -DMESHNBV_BUILD_MESHLAB=ON >/dev/null
+cmake --build "$BUILD" -j"$(nproc)" --target meshnbv
+OUT=${MESHNBV_OUT:-out/sample}
+mkdir -p "$OUT"
+"$BUILD/apps/meshnbv" info sample_projects/box/box.mlp --json "$OUT/info.json"
+echo "results: $OUT/info.json"
