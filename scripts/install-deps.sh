@@ -11,7 +11,7 @@ PACKAGES=(
   libeigen3-dev libembree-dev libopencv-dev libopenmesh-dev libcgal-dev libtbb-dev
   nlohmann-json3-dev libpugixml-dev libcli11-dev libtinyobjloader-dev
   # tests and benchmarks
-  libgtest-dev libgmock-dev libbenchmark-dev
+  libgtest-dev libgmock-dev libbenchmark-dev python3
 )
 
 missing=()

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <map>
+#include <tuple>
 
 #include "meshnbv/io/mesh_io.h"
 #include "meshnbv/io/scene_io.h"
@@ -77,6 +79,20 @@ Scene make_box_scene(const BoxSceneOptions& o) {
         }
     }
   }
+  // Weld the sides' shared edge vertices (computed by the same formula, so
+  // bitwise equal) to make the box closed and manifold.
+  std::map<std::tuple<double, double, double>, int> index;
+  std::vector<int> remap(m.vertices.size());
+  std::vector<Vec3> welded;
+  for (std::size_t i = 0; i < m.vertices.size(); ++i) {
+    const Vec3& p = m.vertices[i];
+    auto [it, inserted] = index.try_emplace({p.x(), p.y(), p.z()}, int(welded.size()));
+    if (inserted) welded.push_back(p);
+    remap[i] = it->second;
+  }
+  m.vertices = welded;
+  for (auto& f : m.faces)
+    for (int& i : f) i = remap[i];
   const Vec3 centre = 0.5 * (o.min + o.max);
   const double f = 0.9 * o.width;
   for (int k = 0; k < o.views; ++k) {
