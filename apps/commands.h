@@ -19,5 +19,6 @@ struct SceneInput {
 // Subcommands run their work in a callback and throw meshnbv::Error on failure.
 void add_info_command(CLI::App& app);
 void add_convert_command(CLI::App& app);
+void add_synth_command(CLI::App& app);
 
 }  // namespace meshnbv::cli

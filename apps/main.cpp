@@ -14,6 +14,7 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", "meshnbv 0.1.0");
   meshnbv::cli::add_info_command(app);
   meshnbv::cli::add_convert_command(app);
+  meshnbv::cli::add_synth_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -1,0 +1,42 @@
+#include "progress_bar.h"
+
+#include <cstdio>
+#include <unistd.h>
+
+namespace meshnbv::cli {
+
+ProgressBar::ProgressBar(bool quiet) : enabled_(!quiet && ::isatty(STDERR_FILENO)) {}
+
+ProgressCallback ProgressBar::callback() {
+  return [this](double fraction, const std::string& stage) {
+    draw(fraction, stage);
+    return true;
+  };
+}
+
+void ProgressBar::draw(double fraction, const std::string& stage) {
+  if (!enabled_) return;
+  const auto now = std::chrono::steady_clock::now();
+  if (stage != stage_) {
+    if (!stage_.empty()) std::fputc('\n', stderr);
+    stage_ = stage;
+    stage_start_ = now;
+    last_percent_ = -1;
+  }
+  const int percent = int(fraction * 100.0);
+  if (percent == last_percent_) return;
+  last_percent_ = percent;
+  const double elapsed = std::chrono::duration<double>(now - stage_start_).count();
+  const double eta = fraction > 0.01 ? elapsed * (1.0 - fraction) / fraction : 0.0;
+  const int width = 30, filled = int(fraction * width);
+  std::fprintf(stderr, "\r%-10s [%.*s%*s] %3d%%  %5.1fs  eta %5.1fs", stage.c_str(), filled,
+               "##############################", width - filled, "", percent, elapsed, eta);
+  std::fflush(stderr);
+}
+
+void ProgressBar::finish() {
+  if (enabled_ && !stage_.empty()) std::fputc('\n', stderr);
+  stage_.clear();
+}
+
+}  // namespace meshnbv::cli

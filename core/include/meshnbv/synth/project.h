@@ -1,0 +1,49 @@
+// A complete synthetic project: ground truth, a degraded reconstruction with
+// known per-face error, rendered images, and the project files.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "meshnbv/progress.h"
+#include "meshnbv/renderer.h"
+#include "meshnbv/scene.h"
+#include "meshnbv/synth/degrade.h"
+#include "meshnbv/synth/generators.h"
+
+namespace meshnbv::synth {
+
+struct SynthOptions {
+  std::string scene = "building";  // building | fortress | city | object
+  std::string mesh_file;           // for "object": any mesh the core reads
+  GeneratorOptions generator;
+  CameraSetOptions cameras;
+  // Empty: one noise region and one dent, at random places from the seed.
+  std::vector<Degradation> degradations;
+  RenderOptions render;
+  std::uint64_t seed = 1;
+  bool write_depth = false;  // also images/<label>_depth.tiff (32-bit float)
+  bool overwrite = false;
+
+  // Throws Error for inconsistent options (object without a mesh, ...).
+  void check() const;
+};
+
+struct SynthProject {
+  TriangleMesh truth;            // with face attribute "material"
+  Scene scene;                   // the degraded mesh + views (images when written)
+  std::vector<float> gt_error;   // per face of scene.mesh, metres
+  std::vector<Vec3> region_centers;
+  double completeness_threshold = 0;  // suggested (1% of the diagonal), stated in the README
+};
+
+// Builds the meshes and cameras (no images).
+SynthProject make_synthetic_project(const SynthOptions& options);
+
+// Writes into `folder`: truth.ply, degraded.ply (face attribute gt_error),
+// gt_error.csv, images/view_NNN.png, project.mlp (degraded mesh + rasters),
+// scene.json, README.md. Refuses a non-empty folder unless overwrite.
+SynthProject write_synthetic_project(const SynthOptions& options, const std::string& folder,
+                                     const ProgressCallback& progress = {});
+
+}  // namespace meshnbv::synth

@@ -1,0 +1,534 @@
+// COLMAP text models (cameras.txt, images.txt, points3D.txt), as written by
+// `colmap model_converter --output_type TXT` (COLMAP 3.x).
+//
+// Conventions, and how they map to ours:
+// - images.txt holds the world-to-camera pose: quaternion (QW QX QY QZ) of R
+//   and T with x_cam = R X + T, camera along +z, y down: ours unchanged.
+// - COLMAP puts the centre of the top-left pixel at (0.5, 0.5); ours is at
+//   (0, 0), so cx_ours = cx_colmap - 0.5 (same for cy), and + 0.5 on write.
+// - SIMPLE_RADIAL / RADIAL / OPENCV distort normalised coordinates with
+//   1 + k1 r^2 (+ k2 r^4): the same polynomial as ours.
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
+#include <iomanip>
+#include <map>
+#include <set>
+#include <sstream>
+#include <string>
+#include <string_view>
+#include <tuple>
+#include <vector>
+
+#include "meshnbv/error.h"
+#include "meshnbv/io/file_util.h"
+#include "meshnbv/io/mesh_io.h"
+#include "meshnbv/io/scene_io.h"
+
+namespace fs = std::filesystem;
+
+namespace meshnbv::io {
+namespace {
+
+constexpr double kPixelOffset = 0.5;  // COLMAP pixel coordinate - ours
+constexpr const char* kSupportedModels =
+    "SIMPLE_PINHOLE, PINHOLE, SIMPLE_RADIAL, RADIAL, OPENCV with p1 = p2 = 0";
+
+struct ModelSpec {
+  const char* name;
+  std::size_t num_params;
+  const char* params;
+};
+constexpr ModelSpec kModels[] = {{"SIMPLE_PINHOLE", 3, "f cx cy"},
+                                 {"PINHOLE", 4, "fx fy cx cy"},
+                                 {"SIMPLE_RADIAL", 4, "f cx cy k"},
+                                 {"RADIAL", 5, "f cx cy k1 k2"},
+                                 {"OPENCV", 8, "fx fy cx cy k1 k2 p1 p2"}};
+
+// ---------------------------------------------------------------- reading
+
+struct ColmapCamera {
+  PinholeCamera intrinsics;
+  long line = -1;
+};
+
+struct ColmapImage {
+  long long id = 0;
+  long long camera_id = 0;
+  Mat3 R;
+  Vec3 t;
+  std::string name;
+  long line = -1;
+};
+
+std::vector<std::string> split_whitespace(std::string_view line) {
+  std::vector<std::string> tokens;
+  std::size_t i = 0;
+  while (i < line.size()) {
+    while (i < line.size() && std::isspace(static_cast<unsigned char>(line[i]))) ++i;
+    const std::size_t start = i;
+    while (i < line.size() && !std::isspace(static_cast<unsigned char>(line[i]))) ++i;
+    if (i > start) tokens.emplace_back(line.substr(start, i - start));
+  }
+  return tokens;
+}
+
+bool is_skippable(const std::vector<std::string>& tokens) {
+  return tokens.empty() || tokens[0][0] == '#';
+}
+
+// Raw lines, blank ones included: in images.txt an empty line is data (an
+// image without 2-D points), so TextTokens (which skips blanks) cannot be used.
+class LineCursor {
+ public:
+  explicit LineCursor(const std::string& text) : text_(text) {}
+  bool next(std::string_view* line) {
+    if (pos_ >= text_.size()) return false;
+    std::size_t end = text_.find('\n', pos_);
+    if (end == std::string::npos) end = text_.size();
+    *line = std::string_view(text_).substr(pos_, end - pos_);
+    pos_ = end + 1;
+    ++number_;
+    return true;
+  }
+  long number() const { return number_; }
+
+ private:
+  const std::string& text_;
+  std::size_t pos_ = 0;
+  long number_ = 0;
+};
+
+const ModelSpec& find_model(const std::string& name, const std::string& file, long line) {
+  for (const auto& spec : kModels)
+    if (name == spec.name) return spec;
+  throw Error("camera model '" + name + "' is not supported (supported: " + kSupportedModels +
+                  "); run `colmap image_undistorter` to get a PINHOLE model",
+              file, line);
+}
+
+// Intrinsics in our convention from a model's parameter list.
+PinholeCamera intrinsics_from_params(const std::string& model, const std::vector<double>& p,
+                                     const std::string& file, long line) {
+  PinholeCamera cam;
+  const bool one_focal = model == "SIMPLE_PINHOLE" || model == "SIMPLE_RADIAL" || model == "RADIAL";
+  const std::size_t c = one_focal ? 1 : 2;  // index of cx
+  cam.fx = p[0];
+  cam.fy = one_focal ? p[0] : p[1];
+  cam.cx = p[c] - kPixelOffset;
+  cam.cy = p[c + 1] - kPixelOffset;
+  if (model == "SIMPLE_RADIAL") cam.k1 = p[3];
+  if (model == "RADIAL" || model == "OPENCV") {
+    cam.k1 = p[c + 2];
+    cam.k2 = p[c + 3];
+  }
+  if (model == "OPENCV" && (p[6] != 0.0 || p[7] != 0.0))
+    throw Error(
+        "OPENCV camera with tangential distortion (p1, p2 non-zero): tangential "
+        "distortion not supported; run `colmap image_undistorter` to get a PINHOLE model",
+        file, line);
+  return cam;
+}
+
+int parse_size(const std::string& token, const std::string& file, long line, const char* what) {
+  const long long value = parse_int(token, file, line, what);
+  if (value <= 0 || value > (1 << 30))
+    throw Error(std::string(what) + " must be a positive image size, got " + token, file, line);
+  return static_cast<int>(value);
+}
+
+ColmapCamera parse_camera_line(const std::vector<std::string>& tokens, const std::string& file,
+                               long line) {
+  if (tokens.size() < 4)
+    throw Error("expected CAMERA_ID MODEL WIDTH HEIGHT PARAMS..., got " +
+                    std::to_string(tokens.size()) + " fields",
+                file, line);
+  const ModelSpec& spec = find_model(tokens[1], file, line);
+  if (tokens.size() != 4 + spec.num_params)
+    throw Error("camera model " + tokens[1] + " takes " + std::to_string(spec.num_params) +
+                    " parameters (" + spec.params + "), got " + std::to_string(tokens.size() - 4),
+                file, line);
+  std::vector<double> params;
+  for (std::size_t i = 0; i < spec.num_params; ++i)
+    params.push_back(
+        parse_double(tokens[4 + i], file, line, "camera parameter " + std::to_string(i + 1)));
+  ColmapCamera cam{intrinsics_from_params(tokens[1], params, file, line), line};
+  cam.intrinsics.width = parse_size(tokens[2], file, line, "WIDTH");
+  cam.intrinsics.height = parse_size(tokens[3], file, line, "HEIGHT");
+  try {
+    cam.intrinsics.check("camera " + tokens[0]);
+  } catch (const Error& e) {
+    throw Error(e.reason(), file, line);
+  }
+  return cam;
+}
+
+std::map<long long, ColmapCamera> read_cameras_txt(const std::string& file) {
+  TextTokens text(read_file(file), file);
+  std::map<long long, ColmapCamera> cameras;
+  std::vector<std::string> tokens;
+  while (text.next_line(&tokens)) {
+    if (is_skippable(tokens)) continue;
+    const long line = text.line();
+    const long long id = parse_int(tokens[0], file, line, "CAMERA_ID");
+    ColmapCamera cam = parse_camera_line(tokens, file, line);
+    auto [it, inserted] = cameras.emplace(id, cam);
+    if (!inserted)
+      throw Error("camera " + tokens[0] + " is defined twice (also on line " +
+                      std::to_string(it->second.line) + ")",
+                  file, line);
+  }
+  if (cameras.empty()) throw Error("no camera defined", file);
+  return cameras;
+}
+
+Mat3 rotation_from_quaternion(double w, double x, double y, double z, const std::string& file,
+                              long line) {
+  Eigen::Quaterniond q(w, x, y, z);
+  // Written quaternions carry rounding (or are typed by hand): normalise.
+  if (!(q.norm() > 1e-12)) throw Error("zero quaternion (QW QX QY QZ all 0)", file, line);
+  q.normalize();
+  return q.toRotationMatrix();
+}
+
+ColmapImage parse_image_line(const std::vector<std::string>& tokens, const std::string& file,
+                             long line) {
+  // COLMAP reads NAME up to the next space, so names cannot hold spaces.
+  if (tokens.size() != 10)
+    throw Error(
+        "expected 10 fields (IMAGE_ID QW QX QY QZ TX TY TZ CAMERA_ID NAME; NAME "
+        "without spaces), got " +
+            std::to_string(tokens.size()),
+        file, line);
+  const char* names[] = {"QW", "QX", "QY", "QZ", "TX", "TY", "TZ"};
+  double v[7];
+  for (int i = 0; i < 7; ++i) v[i] = parse_double(tokens[1 + i], file, line, names[i]);
+  ColmapImage image;
+  image.id = parse_int(tokens[0], file, line, "IMAGE_ID");
+  image.R = rotation_from_quaternion(v[0], v[1], v[2], v[3], file, line);
+  image.t = Vec3(v[4], v[5], v[6]);
+  image.camera_id = parse_int(tokens[8], file, line, "CAMERA_ID");
+  image.name = tokens[9];
+  image.line = line;
+  return image;
+}
+
+// The POINTS2D line holds (X, Y, POINT3D_ID) triples, or nothing. Its
+// content is not needed, but a wrong field count means the file does not
+// alternate image and points lines (e.g. points lines left out).
+void check_points_line(std::string_view text, const ColmapImage& image, const std::string& file,
+                       long line) {
+  const std::vector<std::string> tokens = split_whitespace(text);
+  if (!tokens.empty() && tokens[0][0] == '#')
+    throw Error("expected the POINTS2D line of image " + std::to_string(image.id) +
+                    " (an empty line when it has none), got a comment",
+                file, line);
+  if (tokens.size() % 3 != 0)
+    throw Error("expected the POINTS2D line of image " + std::to_string(image.id) +
+                    " (X Y POINT3D_ID triples, or an empty line), got " +
+                    std::to_string(tokens.size()) +
+                    " fields; every image takes two lines in images.txt",
+                file, line);
+}
+
+std::vector<ColmapImage> read_images_txt(const std::string& file) {
+  const std::string text = read_file(file);
+  LineCursor cursor(text);
+  std::vector<ColmapImage> images;
+  std::string_view raw;
+  while (cursor.next(&raw)) {
+    const std::vector<std::string> tokens = split_whitespace(raw);
+    if (is_skippable(tokens)) continue;
+    images.push_back(parse_image_line(tokens, file, cursor.number()));
+    // The points line follows at once; at the end of the file it may be absent.
+    if (cursor.next(&raw)) check_points_line(raw, images.back(), file, cursor.number());
+  }
+  if (images.empty()) throw Error("no image listed", file);
+  std::sort(images.begin(), images.end(),
+            [](const ColmapImage& a, const ColmapImage& b) { return a.id < b.id; });
+  for (std::size_t i = 1; i < images.size(); ++i)
+    if (images[i].id == images[i - 1].id)
+      throw Error("IMAGE_ID " + std::to_string(images[i].id) + " appears twice (lines " +
+                      std::to_string(std::min(images[i].line, images[i - 1].line)) + " and " +
+                      std::to_string(std::max(images[i].line, images[i - 1].line)) + ")",
+                  file);
+  return images;
+}
+
+bool exists_file(const fs::path& path) {
+  std::error_code ec;
+  return fs::is_regular_file(path, ec);
+}
+
+// Where images may live, in the order read_colmap tries them (scene_io.h).
+std::vector<fs::path> image_folder_candidates(const fs::path& model, const std::string& image_dir) {
+  std::vector<fs::path> candidates;
+  if (!image_dir.empty())
+    candidates.push_back(image_dir);
+  else
+    candidates = {model / "images", model / ".." / "images", model / ".." / ".." / "images", model};
+  for (auto& c : candidates) c = fs::absolute(c).lexically_normal();
+  return candidates;
+}
+
+// The first candidate holding the first image; empty if none does.
+fs::path find_image_folder(const std::vector<fs::path>& candidates,
+                           const std::string& first_image) {
+  for (const auto& c : candidates)
+    if (exists_file(resolve(first_image, c.string()))) return c;
+  return {};
+}
+
+// The folder every image name is resolved against; when no candidate holds
+// the first image, the last one, with a warning.
+std::string choose_image_folder(const fs::path& model, const std::string& image_dir,
+                                const std::string& first_image, Scene* scene) {
+  const std::vector<fs::path> candidates = image_folder_candidates(model, image_dir);
+  const fs::path found = find_image_folder(candidates, first_image);
+  if (!found.empty()) return found.string();
+  std::string looked;
+  for (const auto& c : candidates) looked += (looked.empty() ? "" : ", ") + c.string();
+  scene->warnings.push_back("images not found: '" + first_image + "' is in none of " + looked +
+                            "; image paths are resolved against " + candidates.back().string() +
+                            " (pass the image folder to use)");
+  return candidates.back().string();
+}
+
+// COLMAP's dense workspace keeps its mesh beside (or one level above) the model.
+void attach_mesh(const fs::path& model, Scene* scene) {
+  const fs::path candidates[] = {model / "meshed.ply", model / ".." / "meshed-poisson.ply",
+                                 model / ".." / "meshed-delaunay.ply"};
+  for (const auto& c : candidates) {
+    if (!exists_file(c)) continue;
+    scene->mesh_path = c.lexically_normal().string();
+    scene->mesh = read_mesh(scene->mesh_path);
+    return;
+  }
+}
+
+fs::path model_folder(const std::string& path) {
+  std::error_code ec;
+  if (!fs::exists(path, ec)) throw Error("no such folder", path);
+  fs::path folder(path);
+  // Accept cameras.txt / images.txt themselves as well as their folder.
+  if (!fs::is_directory(folder, ec)) folder = folder.parent_path();
+  if (folder.empty()) folder = ".";
+  if (!exists_file(folder / "cameras.txt") && exists_file(folder / "cameras.bin"))
+    throw Error(
+        "binary COLMAP model (cameras.bin); convert it with `colmap model_converter "
+        "--input_path M --output_path M --output_type TXT`",
+        folder.string());
+  for (const char* name : {"cameras.txt", "images.txt"})
+    if (!exists_file(folder / name))
+      throw Error(std::string("not a COLMAP text model: ") + name + " missing", folder.string());
+  return folder;
+}
+
+// ---------------------------------------------------------------- writing
+
+using IntrinsicsKey = std::tuple<int, int, double, double, double, double, double, double>;
+
+IntrinsicsKey intrinsics_key(const PinholeCamera& c) {
+  return {c.width, c.height, c.fx, c.fy, c.cx, c.cy, c.k1, c.k2};
+}
+
+// PINHOLE without distortion, RADIAL when one focal length, else OPENCV
+// with p1 = p2 = 0; all three read back exactly.
+std::string camera_line(int id, const PinholeCamera& c) {
+  std::ostringstream out;
+  out << std::setprecision(17) << id << ' ';
+  const double cx = c.cx + kPixelOffset, cy = c.cy + kPixelOffset;
+  if (!c.has_distortion()) {
+    out << "PINHOLE " << c.width << ' ' << c.height << ' ' << c.fx << ' ' << c.fy << ' ' << cx
+        << ' ' << cy;
+  } else if (c.fx == c.fy) {
+    out << "RADIAL " << c.width << ' ' << c.height << ' ' << c.fx << ' ' << cx << ' ' << cy << ' '
+        << c.k1 << ' ' << c.k2;
+  } else {
+    out << "OPENCV " << c.width << ' ' << c.height << ' ' << c.fx << ' ' << c.fy << ' ' << cx << ' '
+        << cy << ' ' << c.k1 << ' ' << c.k2 << " 0 0";
+  }
+  return out.str();
+}
+
+// Whether a relative_to() result stays inside its base folder.
+bool is_under(const std::string& relative) {
+  const fs::path p(relative);
+  return !p.empty() && !p.is_absolute() && *p.begin() != "..";
+}
+
+fs::path absolute_normal(const std::string& path) { return fs::absolute(path).lexically_normal(); }
+
+// NAME of every view: its image path relative to `base`, or (base empty)
+// absolute; a view without image keeps its label, since COLMAP needs a name.
+std::vector<std::string> names_relative_to(const Scene& scene, const fs::path& base) {
+  std::vector<std::string> names;
+  for (const View& v : scene.views) {
+    if (!v.has_image())
+      names.push_back(v.label);
+    else
+      names.push_back(base.empty() ? absolute_normal(v.image_path).string()
+                                   : relative_to(v.image_path, base.string()));
+  }
+  return names;
+}
+
+// Whether read_colmap, which resolves every name against the first image
+// folder candidate holding the first image, finds each view's image again.
+bool names_resolve_back(const Scene& scene, const std::vector<std::string>& names,
+                        const fs::path& model) {
+  const auto candidates = image_folder_candidates(model, {});
+  fs::path folder = find_image_folder(candidates, names.front());
+  if (folder.empty()) folder = candidates.back();
+  for (std::size_t i = 0; i < names.size(); ++i)
+    if (scene.views[i].has_image() && absolute_normal(resolve(names[i], folder.string())) !=
+                                          absolute_normal(scene.views[i].image_path))
+      return false;
+  return true;
+}
+
+// Clean names relative to the first candidate image folder holding every
+// image; else relative to the model folder; else absolute paths, whichever
+// read_colmap resolves back to the same files.
+std::vector<std::string> choose_image_names(const Scene& scene, const fs::path& model) {
+  if (scene.views.empty()) return {};
+  auto candidates = image_folder_candidates(model, {});
+  const fs::path model_itself = candidates.back();
+  candidates.pop_back();
+  for (const fs::path& base : candidates) {
+    const bool holds_all = std::all_of(scene.views.begin(), scene.views.end(), [&](const View& v) {
+      return !v.has_image() || is_under(relative_to(v.image_path, base.string()));
+    });
+    if (!holds_all) continue;
+    auto names = names_relative_to(scene, base);
+    if (names_resolve_back(scene, names, model)) return names;
+  }
+  auto names = names_relative_to(scene, model_itself);
+  if (names_resolve_back(scene, names, model)) return names;
+  return names_relative_to(scene, {});
+}
+
+std::string image_line(int id, int camera_id, const PinholeCamera& c, const std::string& name) {
+  Eigen::Quaterniond q(c.R);
+  q.normalize();
+  if (q.w() < 0) q.coeffs() *= -1.0;  // COLMAP's habit: QW >= 0
+  std::ostringstream out;
+  out << std::setprecision(17) << id << ' ' << q.w() << ' ' << q.x() << ' ' << q.y() << ' ' << q.z()
+      << ' ' << c.t.x() << ' ' << c.t.y() << ' ' << c.t.z() << ' ' << camera_id << ' ' << name;
+  return out.str();
+}
+
+struct ColmapModelText {
+  std::vector<std::string> cameras;  // one line each
+  std::vector<std::string> images;   // the image line of each (points line empty)
+};
+
+ColmapModelText build_model_text(const Scene& scene, const fs::path& folder) {
+  ColmapModelText text;
+  std::map<IntrinsicsKey, int> camera_ids;
+  std::set<std::string> names;
+  const std::vector<std::string> chosen = choose_image_names(scene, folder);
+  for (std::size_t i = 0; i < scene.views.size(); ++i) {
+    const View& view = scene.views[i];
+    const std::string what = "view " + std::to_string(i) + " ('" + view.label + "')";
+    view.camera.check(what);
+    const std::string& name = chosen[i];
+    if (name.empty() || std::any_of(name.begin(), name.end(),
+                                    [](unsigned char ch) { return std::isspace(ch) != 0; }))
+      throw Error(what + ": COLMAP image names must be non-empty and without spaces, got '" + name +
+                  "'");
+    if (!names.insert(name).second)
+      throw Error(what + ": image name '" + name + "' is used twice; COLMAP needs unique names");
+    auto [it, added] =
+        camera_ids.emplace(intrinsics_key(view.camera), static_cast<int>(camera_ids.size()) + 1);
+    if (added) text.cameras.push_back(camera_line(it->second, view.camera));
+    text.images.push_back(image_line(static_cast<int>(i) + 1, it->second, view.camera, name));
+  }
+  return text;
+}
+
+void write_cameras_txt(std::ostream& out, const ColmapModelText& text) {
+  out << "# Camera list with one line of data per camera:\n"
+      << "#   CAMERA_ID, MODEL, WIDTH, HEIGHT, PARAMS[]\n"
+      << "# Number of cameras: " << text.cameras.size() << "\n";
+  for (const auto& line : text.cameras) out << line << '\n';
+}
+
+void write_images_txt(std::ostream& out, const ColmapModelText& text) {
+  out << "# Image list with two lines of data per image:\n"
+      << "#   IMAGE_ID, QW, QX, QY, QZ, TX, TY, TZ, CAMERA_ID, NAME\n"
+      << "#   POINTS2D[] as (X, Y, POINT3D_ID)\n"
+      << "# Number of images: " << text.images.size() << ", mean observations per image: 0\n";
+  for (const auto& line : text.images) out << line << "\n\n";  // empty POINTS2D line
+}
+
+void write_points3d_txt(std::ostream& out) {
+  out << "# 3D point list with one line of data per point:\n"
+      << "#   POINT3D_ID, X, Y, Z, R, G, B, ERROR, TRACK[] as (IMAGE_ID, POINT2D_IDX)\n"
+      << "# Number of points: 0, mean track length: 0\n";
+}
+
+}  // namespace
+
+Scene read_colmap(const std::string& path, const std::string& image_dir) {
+  const fs::path model = model_folder(path);
+  const std::string cameras_file = (model / "cameras.txt").string();
+  const std::string images_file = (model / "images.txt").string();
+  const auto cameras = read_cameras_txt(cameras_file);
+  const auto images = read_images_txt(images_file);
+
+  Scene scene;
+  scene.format = "colmap";
+  scene.source = path;
+  const std::string image_folder =
+      choose_image_folder(fs::absolute(model), image_dir, images.front().name, &scene);
+  for (const ColmapImage& image : images) {
+    auto cam = cameras.find(image.camera_id);
+    if (cam == cameras.end())
+      throw Error("image " + std::to_string(image.id) + " ('" + image.name +
+                      "') refers to camera " + std::to_string(image.camera_id) + ", which " +
+                      cameras_file + " does not define",
+                  images_file, image.line);
+    View view;
+    view.label = image.name;
+    view.camera = cam->second.intrinsics;
+    view.camera.R = image.R;
+    view.camera.t = image.t;
+    view.image_path = resolve(image.name, image_folder);
+    scene.views.push_back(std::move(view));
+  }
+  attach_mesh(fs::absolute(model), &scene);
+  return scene;
+}
+
+void write_colmap(const Scene& scene, const std::string& folder, bool overwrite) {
+  const fs::path dir = fs::absolute(folder).lexically_normal();
+  std::error_code ec;
+  if (fs::exists(dir, ec) && !fs::is_directory(dir, ec))
+    throw Error("is a file; a COLMAP model is a folder", folder);
+  // Everything that can fail is checked before the first file is written.
+  const ColmapModelText text = build_model_text(scene, dir);
+  const std::string cameras = (dir / "cameras.txt").string();
+  const std::string images = (dir / "images.txt").string();
+  const std::string points = (dir / "points3D.txt").string();
+  const std::string mesh = (dir / "meshed.ply").string();
+  for (const auto& target : {cameras, images, points}) check_can_write(target, overwrite);
+  if (!scene.mesh.empty()) check_can_write(mesh, overwrite);
+
+  fs::create_directories(dir, ec);
+  if (ec) throw Error("cannot create folder: " + ec.message(), folder);
+  write_atomically(
+      cameras, [&](std::ostream& out) { write_cameras_txt(out, text); }, overwrite);
+  write_atomically(
+      images, [&](std::ostream& out) { write_images_txt(out, text); }, overwrite);
+  write_atomically(
+      points, [](std::ostream& out) { write_points3d_txt(out); }, overwrite);
+  if (!scene.mesh.empty()) {
+    PlyWriteOptions options;
+    options.overwrite = overwrite;
+    write_ply(scene.mesh, mesh, options);
+  }
+}
+
+}  // namespace meshnbv::io
