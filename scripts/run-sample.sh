@@ -10,5 +10,5 @@ cmake -S . -B "$BUILD" -G Ninja -DCMAKE_BUILD_TYPE=Release -DMESHNBV_BUILD_TESTS
 cmake --build "$BUILD" -j"$(nproc)" --target meshnbv
 OUT=${MESHNBV_OUT:-out/sample}
 mkdir -p "$OUT"
-"$BUILD/apps/meshnbv" info sample_projects/box/box.mlp --json "$OUT/info.json"
+"$BUILD/apps/meshnbv" info sample_projects/building/project.mlp --json "$OUT/info.json"
 echo "results: $OUT/info.json"

@@ -1,6 +1,6 @@
 # meshnbv convert between .mlp, JSON and COLMAP, with overwrite protection.
 source "$(dirname "$0")/lib.bash"
-S="$ROOT/sample_projects/box/box.mlp"
+S="$ROOT/sample_projects/building/project.mlp"
 "$MESHNBV" convert "$S" "$TMP/box.json" >/dev/null || fail "to json"
 "$MESHNBV" convert "$TMP/box.json" "$TMP/colmap" >/dev/null || fail "json to colmap"
 [ -f "$TMP/colmap/cameras.txt" ] && [ -f "$TMP/colmap/images.txt" ] || fail "colmap files"
