@@ -115,6 +115,46 @@ bool Image::sample_rgb(double x, double y, float out[3]) const {
   return true;
 }
 
+FloatImage FloatImage::luminance_of(const Image& image) {
+  FloatImage out;
+  out.width_ = image.width();
+  out.height_ = image.height();
+  out.channels_ = 1;
+  out.data_.resize(std::size_t(out.width_) * out.height_);
+  for (int y = 0; y < out.height_; ++y)
+    for (int x = 0; x < out.width_; ++x)
+      out.data_[std::size_t(y) * out.width_ + x] = image.luminance(x, y);
+  return out;
+}
+
+FloatImage FloatImage::rgb_of(const Image& image) {
+  FloatImage out;
+  out.width_ = image.width();
+  out.height_ = image.height();
+  out.channels_ = 3;
+  out.data_.resize(std::size_t(out.width_) * out.height_ * 3);
+  for (int y = 0; y < out.height_; ++y)
+    for (int x = 0; x < out.width_; ++x)
+      for (int c = 0; c < 3; ++c)
+        out.data_[(std::size_t(y) * out.width_ + x) * 3 + c] =
+            image.pixel(x, y)[image.channels() == 1 ? 0 : c] * kInv255;
+  return out;
+}
+
+bool FloatImage::sample(double x, double y, float* out) const {
+  int x0, x1, y0, y1;
+  float wx, wy;
+  if (!cell(x, width_, &x0, &x1, &wx) || !cell(y, height_, &y0, &y1, &wy)) return false;
+  const float* r0 = &data_[std::size_t(y0) * width_ * channels_];
+  const float* r1 = &data_[std::size_t(y1) * width_ * channels_];
+  for (int c = 0; c < channels_; ++c) {
+    const float a = r0[x0 * channels_ + c], b = r0[x1 * channels_ + c];
+    const float d0 = r1[x0 * channels_ + c], d1 = r1[x1 * channels_ + c];
+    out[c] = (1 - wy) * ((1 - wx) * a + wx * b) + wy * ((1 - wx) * d0 + wx * d1);
+  }
+  return true;
+}
+
 ImageCache::ImageCache(std::size_t max_bytes) : max_bytes_(max_bytes) {}
 
 std::shared_ptr<const Image> ImageCache::get(const std::string& path) {

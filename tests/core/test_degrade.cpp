@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <map>
 #include <tuple>
@@ -24,9 +25,9 @@ TriangleMesh icosphere(int levels, double radius = 1.0, const Vec3& center = Vec
                         Vec3(0, -1, t), Vec3(0, 1, t), Vec3(0, -1, -t), Vec3(0, 1, -t),
                         Vec3(t, 0, -1), Vec3(t, 0, 1), Vec3(-t, 0, -1), Vec3(-t, 0, 1)})
     m.vertices.push_back(p.normalized());
-  m.faces = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
+  m.faces = {{0, 11, 5},  {0, 5, 1},  {0, 1, 7},  {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
              {11, 10, 2}, {10, 7, 6}, {7, 1, 8},  {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
-             {3, 8, 9},  {4, 9, 5},  {2, 4, 11},  {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
+             {3, 8, 9},   {4, 9, 5},  {2, 4, 11}, {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
   for (int level = 0; level < levels; ++level) {
     std::map<std::pair<int, int>, int> midpoint;
     auto mid = [&](int a, int b) {
@@ -71,8 +72,8 @@ TriangleMesh grid_box(const Vec3& lo, double size, int n) {
   };
   const Vec3 X(1, 0, 0), Y(0, 1, 0), Z(0, 0, 1), O(0, 0, 0);
   // origin, u, v with u x v outward
-  const std::array<std::array<Vec3, 3>, 6> sides = {{{O, Y, X}, {Z, X, Y}, {O, X, Z},
-                                                     {Y, Z, X}, {O, Z, Y}, {X, Y, Z}}};
+  const std::array<std::array<Vec3, 3>, 6> sides = {
+      {{O, Y, X}, {Z, X, Y}, {O, X, Z}, {Y, Z, X}, {O, Z, Y}, {X, Y, Z}}};
   for (const auto& side : sides)
     for (int i = 0; i < n; ++i)
       for (int j = 0; j < n; ++j) {
@@ -284,8 +285,9 @@ TEST(Degrade, NoiseChangesOnlyTheRegion) {
     }
   }
   const double inner_mean = inner_sum / inner_n;
-  std::printf("[noise] region vertices %zu, mean GT error inside r/2 = %.3g (sigma %.3g), far max = %.3g\n",
-              inside, inner_mean, 0.01 * diag, far_max);
+  std::printf(
+      "[noise] region vertices %zu, mean GT error inside r/2 = %.3g (sigma %.3g), far max = %.3g\n",
+      inside, inner_mean, 0.01 * diag, far_max);
   EXPECT_GT(inner_mean, 0.1 * 0.01 * diag);
   EXPECT_LT(far_max, 1e-9 * diag);
 }
@@ -410,14 +412,16 @@ TEST(Degrade, DecimateSphere) {
   for (float e : err) mean += e;
   mean /= err.size();
   const double worst = *std::max_element(err.begin(), err.end());
-  std::printf("[decimate] %zu -> %zu faces (target %.0f), GT error mean %.3g max %.3g (diag %.3g)\n",
-              truth.num_faces(), out.mesh.num_faces(), target, mean, worst, diag);
+  std::printf(
+      "[decimate] %zu -> %zu faces (target %.0f), GT error mean %.3g max %.3g (diag %.3g)\n",
+      truth.num_faces(), out.mesh.num_faces(), target, mean, worst, diag);
   EXPECT_LT(worst, 0.01 * diag);
   EXPECT_LT(mean, 0.002 * diag);
   // Still outward: the enclosed volume is that of the sphere, give or take.
   double volume = 0;
   for (const Face& f : out.mesh.faces)
-    volume += out.mesh.vertices[f[0]].dot(out.mesh.vertices[f[1]].cross(out.mesh.vertices[f[2]])) / 6;
+    volume +=
+        out.mesh.vertices[f[0]].dot(out.mesh.vertices[f[1]].cross(out.mesh.vertices[f[2]])) / 6;
   EXPECT_NEAR(volume, 4.0 / 3.0 * std::acos(-1.0), 0.1);
 
   // Strength 0 removes nothing: the mesh comes back as it was, attributes too.
@@ -448,7 +452,8 @@ TEST(Degrade, DecimateComponentsAndNonManifoldFaces) {
   // The fin survives unchanged.
   bool fin_found = false;
   for (const Face& f : out.mesh.faces)
-    if (bitwise_equal(out.mesh.vertices[f[0]], fin_a) && bitwise_equal(out.mesh.vertices[f[1]], fin_b) &&
+    if (bitwise_equal(out.mesh.vertices[f[0]], fin_a) &&
+        bitwise_equal(out.mesh.vertices[f[1]], fin_b) &&
         bitwise_equal(out.mesh.vertices[f[2]], fin_c))
       fin_found = true;
   EXPECT_TRUE(fin_found);
@@ -464,10 +469,9 @@ TEST(Degrade, DecimateComponentsAndNonManifoldFaces) {
 
 TEST(Degrade, SameSeedSameOutput) {
   const TriangleMesh truth = icosphere(4);
-  const std::vector<Degradation> chain = {parse_degradation("noise:0.01:0.3"),
-                                          parse_degradation("dent"), parse_degradation("bump"),
-                                          parse_degradation("hole"),
-                                          parse_degradation("decimate:0.5")};
+  const std::vector<Degradation> chain = {
+      parse_degradation("noise:0.01:0.3"), parse_degradation("dent"), parse_degradation("bump"),
+      parse_degradation("hole"), parse_degradation("decimate:0.5")};
   const DegradeResult a = degrade(truth, chain, 42);
   const DegradeResult b = degrade(truth, chain, 42);
   ASSERT_EQ(a.region_centers.size(), 4u);

@@ -54,15 +54,18 @@ void expect_pyramid_geometry(const TriangleMesh& m) {
   EXPECT_EQ(m.faces, kPyramidFaces);
 }
 
-// Coordinates that float cannot hold exactly (so float vs double shows), a
-// NaN quality (an unobserved face's PRI must survive a round trip) and
-// qualities that need all 9 significant digits of a float.
+// Coordinates that float cannot hold exactly (so float vs double shows),
+// attributes besides `quality` (every attribute must come back), a NaN (an
+// unobserved face's PRI must survive) and values that need all 9
+// significant digits of a float.
 TriangleMesh sample_mesh() {
   TriangleMesh m;
   m.vertices = {Vec3(0.1, 0.2, 0.3), Vec3(1.0 / 3.0, -2.5, 1e-7), Vec3(-1e5, 7.25, 2.0 / 7.0),
                 Vec3(12345.678901, -0.000123, 9.87654321)};
   m.faces = {{0, 1, 2}, {0, 2, 3}, {3, 2, 1}};
-  m.face_attributes["quality"] = {std::numeric_limits<float>::quiet_NaN(), 1.0f / 3.0f, 1e20f};
+  m.face_attributes["quality"] = {0.125f, 1.0f / 3.0f, 1e20f};
+  m.face_attributes["pri"] = {std::numeric_limits<float>::quiet_NaN(), 2e-8f, -3.5f};
+  m.face_attributes["pri_views"] = {0, 2, 7};
   m.face_colors = {Rgb8{255, 0, 7}, Rgb8{0, 128, 255}, Rgb8{1, 2, 3}};
   return m;
 }
@@ -151,19 +154,6 @@ TEST(PlyIo, RoundTripAsciiFloatWithQualityAndColor) {
 
 TEST(PlyIo, RoundTripAsciiDoubleIsExact) { round_trip("PlyIo.RoundTripAsciiDouble", false, true); }
 
-// The writer stores every attribute; the reader, by design, keeps only
-// `quality` (other face properties are skipped like any unknown property).
-TEST(PlyIo, ReadKeepsOnlyQualityAttribute) {
-  const std::string path = test::temp_dir("PlyIo.OnlyQuality") + "/mesh.ply";
-  TriangleMesh in = sample_mesh();
-  in.face_attributes["pri_views"] = {2, 3, 4};
-  io::write_ply(in, path);
-  const TriangleMesh out = io::read_ply(path);
-  EXPECT_EQ(out.face_attributes.size(), 1u);
-  EXPECT_EQ(out.face_attribute("pri_views"), nullptr);
-  EXPECT_EQ((*out.face_attribute("quality"))[1], 1.0f / 3.0f);
-}
-
 TEST(PlyIo, RoundTripWithoutAttributesAddsNone) {
   const std::string path = test::temp_dir("PlyIo.NoAttributes") + "/mesh.ply";
   TriangleMesh in = sample_mesh();
@@ -182,19 +172,18 @@ TEST(PlyIo, WrittenHeaderIsMeshLabCompatible) {
   const std::string path = test::temp_dir("PlyIo.Header") + "/mesh.ply";
   io::PlyWriteOptions options;
   options.comment = "two\nlines";
-  TriangleMesh m = sample_mesh();
-  m.face_attributes["pri"] = {0.5f, 0.25f, 0.125f};
-  io::write_ply(m, path, options);
+  io::write_ply(sample_mesh(), path, options);
   const std::string text = slurp(path);
   const std::string header = text.substr(0, text.find("end_header\n") + 11);
-  EXPECT_EQ(header,
-            "ply\nformat binary_little_endian 1.0\ncomment two lines\nelement vertex 4\n"
-            "property float x\nproperty float y\nproperty float z\nelement face 3\n"
-            "property list uchar int vertex_indices\nproperty float pri\n"
-            "property float quality\nproperty uchar red\nproperty uchar green\n"
-            "property uchar blue\nend_header\n");
-  // 4 vertices * 12 bytes + 3 faces * (1 + 12 + 2 * 4 + 3) bytes.
-  EXPECT_EQ(text.size(), header.size() + 4 * 12 + 3 * 24);
+  EXPECT_EQ(
+      header,
+      "ply\nformat binary_little_endian 1.0\ncomment two lines\nelement vertex 4\n"
+      "property float x\nproperty float y\nproperty float z\nelement face 3\n"
+      "property list uchar int vertex_indices\nproperty float pri\n"
+      "property float pri_views\nproperty float quality\nproperty uchar red\nproperty uchar green\n"
+      "property uchar blue\nend_header\n");
+  // 4 vertices * 12 bytes + 3 faces * (1 + 12 + 3 * 4 + 3) bytes.
+  EXPECT_EQ(text.size(), header.size() + 4 * 12 + 3 * 28);
 }
 
 TEST(PlyIo, AsciiWriteHasOneElementPerLine) {
@@ -304,7 +293,8 @@ TEST(PlyIo, ReadsBigEndianBinary) {
 
 // An unknown element with list properties comes first, the vertex carries
 // extra scalar and list properties, the face list is named `vertex_index`
-// and has a list and a non-uchar `red` after it; all must be skipped.
+// and is followed by a list, a non-uchar `red` and an int (all skipped) and
+// a double (read as an attribute of its name).
 TEST(PlyIo, ReadsBinaryWithUnknownPropertiesAndElements) {
   const std::string path = test::temp_dir("PlyIo.BinaryUnknown") + "/mesh.ply";
   Bytes b(false);
@@ -319,13 +309,15 @@ TEST(PlyIo, ReadsBinaryWithUnknownPropertiesAndElements) {
   }
   b.put(std::uint8_t(4)).put(0).put(3).put(2).put(1);
   b.put(std::uint32_t(2)).put(1.5).put(2.5).put(std::uint16_t(300));
+  b.put(std::int32_t(-7)).put(0.0625);
   write_file(path,
              "ply\nformat binary_little_endian 1.0\ncomment unknown things everywhere\n"
              "element camera 2\nproperty list uchar short samples\nproperty char flag\n"
              "element vertex 4\nproperty uint id\nproperty float x\nproperty float y\n"
              "property int tag\nproperty list uint8 int16 ring\nproperty float z\n"
              "element face 1\nproperty list uchar int vertex_index\n"
-             "property list uint double weights\nproperty ushort red\nend_header\n" +
+             "property list uint double weights\nproperty ushort red\nproperty int flags\n"
+             "property double gt_error\nend_header\n" +
                  b.str());
   const TriangleMesh m = io::read_ply(path);
   ASSERT_EQ(m.num_vertices(), 4u);
@@ -333,7 +325,8 @@ TEST(PlyIo, ReadsBinaryWithUnknownPropertiesAndElements) {
   EXPECT_EQ(m.vertices[3], Vec3(0, 1, 0));
   EXPECT_EQ(m.faces, (std::vector<Face>{{0, 3, 2}, {0, 2, 1}}));
   EXPECT_TRUE(m.face_colors.empty()) << "a ushort `red` alone is not a colour";
-  EXPECT_TRUE(m.face_attributes.empty());
+  EXPECT_EQ(m.face_attributes.size(), 1u) << "integer properties are not attributes";
+  EXPECT_EQ(*m.face_attribute("gt_error"), (std::vector<float>{0.0625f, 0.0625f}));
 }
 
 TEST(PlyIo, TriangulatesQuadsAndPentagonsAsFans) {

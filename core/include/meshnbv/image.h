@@ -55,6 +55,28 @@ class Image {
   std::vector<std::uint8_t> data_;
 };
 
+// Float planes for fast repeated sampling (photo-consistency): luminance
+// (1 channel) or RGB (3 channels) in [0, 1], with the same bilinear rule
+// as Image.
+class FloatImage {
+ public:
+  static FloatImage luminance_of(const Image& image);
+  static FloatImage rgb_of(const Image& image);
+
+  int width() const { return width_; }
+  int height() const { return height_; }
+  int channels() const { return channels_; }
+  float at(int x, int y, int c = 0) const {
+    return data_[(std::size_t(y) * width_ + x) * channels_ + c];
+  }
+  // Writes channels() values; false outside [0, W-1] x [0, H-1] or for NaN.
+  bool sample(double x, double y, float* out) const;
+
+ private:
+  int width_ = 0, height_ = 0, channels_ = 0;
+  std::vector<float> data_;
+};
+
 // Least-recently-used cache of decoded images, bounded in bytes. get() is
 // thread-safe; a returned image stays valid while the caller holds it even
 // if the cache evicts it.

@@ -5,6 +5,10 @@
 // huge allocation: declared element counts are checked against the bytes
 // that actually follow the header before anything is reserved.
 //
+// Faces: scalar float/double properties are read into face_attributes under
+// their own name (so "quality" and whatever write_ply stored come back);
+// uchar red/green/blue into face_colors; everything else is skipped.
+//
 // Element numbers in messages are 0-based positions in the file ("face 0"
 // is the first face of the face element), before triangulation.
 #include <algorithm>
@@ -463,7 +467,7 @@ void skip_property(Cursor& c, const PlyProperty& p) {
 
 // What each property of an element is used for; decided once per element
 // so that the per-element loop is a plain switch.
-enum class Role { Skip, X, Y, Z, Indices, Quality, Red, Green, Blue };
+enum class Role { Skip, X, Y, Z, Indices, Attribute, Red, Green, Blue };
 
 std::vector<Role> vertex_roles(const PlyElement& e, const std::string& path) {
   std::vector<Role> roles(e.properties.size(), Role::Skip);
@@ -484,35 +488,55 @@ std::vector<Role> vertex_roles(const PlyElement& e, const std::string& path) {
   return roles;
 }
 
-std::vector<Role> face_roles(const PlyElement& e, const std::string& path, bool* has_colors,
-                             bool* has_quality) {
-  std::vector<Role> roles(e.properties.size(), Role::Skip);
+// How the properties of the face element are used.
+struct FaceLayout {
+  std::vector<Role> roles;              // per property
+  std::vector<std::size_t> slot;        // per property: attribute slot (Role::Attribute)
+  std::vector<std::string> attributes;  // attribute names by slot
+  bool has_colors = false;
+};
+
+// Scalar float/double face properties (and `quality` of any scalar type)
+// become attributes, so every attribute write_ply stores reads back.
+// Integer properties (flags, tags, ids) and colour channels do not.
+bool is_attribute(const PlyProperty& p) {
+  if (p.is_list) return false;
+  if (p.name == "red" || p.name == "green" || p.name == "blue" || p.name == "alpha") return false;
+  return p.name == "quality" || !is_integer(p.type);
+}
+
+FaceLayout face_layout(const PlyElement& e, const std::string& path) {
+  FaceLayout layout;
+  layout.roles.assign(e.properties.size(), Role::Skip);
+  layout.slot.assign(e.properties.size(), 0);
   bool have_indices = false;
   int color_count = 0;
   for (std::size_t i = 0; i < e.properties.size(); ++i) {
     const PlyProperty& p = e.properties[i];
+    Role& role = layout.roles[i];
     if ((p.name == "vertex_indices" || p.name == "vertex_index") && !have_indices) {
       if (!p.is_list || !is_integer(p.type))
         throw Error("face property '" + p.name + "' must be a list of integers", path, e.line);
-      roles[i] = Role::Indices;
+      role = Role::Indices;
       have_indices = true;
-    } else if (p.name == "quality" && !p.is_list) {
-      roles[i] = Role::Quality;
-      *has_quality = true;
+    } else if (is_attribute(p)) {
+      role = Role::Attribute;
+      layout.slot[i] = layout.attributes.size();
+      layout.attributes.push_back(p.name);
     } else if (!p.is_list && p.type == PlyType::UInt8 &&
                (p.name == "red" || p.name == "green" || p.name == "blue")) {
-      roles[i] = p.name == "red" ? Role::Red : p.name == "green" ? Role::Green : Role::Blue;
+      role = p.name == "red" ? Role::Red : p.name == "green" ? Role::Green : Role::Blue;
       ++color_count;
     }
   }
   if (!have_indices && e.count > 0)
     throw Error("face element has no 'vertex_indices' list property", path, e.line);
   // Colours are only taken when all three channels are there.
-  *has_colors = color_count == 3;
-  if (!*has_colors)
-    for (Role& r : roles)
+  layout.has_colors = color_count == 3;
+  if (!layout.has_colors)
+    for (Role& r : layout.roles)
       if (r == Role::Red || r == Role::Green || r == Role::Blue) r = Role::Skip;
-  return roles;
+  return layout;
 }
 
 // -------------------------------------------------------------- reading ---
@@ -577,7 +601,7 @@ void read_vertices(Cursor& c, const PlyElement& e, const ReadContext& ctx, Trian
 
 struct FaceRecord {
   std::vector<int> polygon;
-  float quality = 0.0f;
+  std::vector<float> values;  // by attribute slot
   Rgb8 color{0, 0, 0};
 };
 
@@ -601,37 +625,40 @@ void read_polygon(Cursor& c, const PlyProperty& prop, const ReadContext& ctx, st
 }
 
 // Fan triangulation (v0, vk, vk+1); per-face values go to every triangle.
-void add_polygon(const FaceRecord& r, bool has_quality, bool has_colors, TriangleMesh* mesh,
-                 std::vector<float>* quality) {
+void add_polygon(const FaceRecord& r, bool has_colors, TriangleMesh* mesh,
+                 std::vector<std::vector<float>>* attributes) {
   for (std::size_t k = 1; k + 1 < r.polygon.size(); ++k) {
     mesh->faces.push_back({r.polygon[0], r.polygon[k], r.polygon[k + 1]});
-    if (has_quality) quality->push_back(r.quality);
+    for (std::size_t a = 0; a < r.values.size(); ++a) (*attributes)[a].push_back(r.values[a]);
     if (has_colors) mesh->face_colors.push_back(r.color);
   }
 }
 
 template <class Cursor>
 void read_faces(Cursor& c, const PlyElement& e, const ReadContext& ctx, TriangleMesh* mesh) {
-  bool has_colors = false, has_quality = false;
-  const std::vector<Role> roles = face_roles(e, ctx.path, &has_colors, &has_quality);
+  const FaceLayout layout = face_layout(e, ctx.path);
   mesh->faces.reserve(reserve_hint(e.count));
-  std::vector<float> quality;
+  std::vector<std::vector<float>> attributes(layout.attributes.size());
   FaceRecord r;
+  r.values.assign(layout.attributes.size(), 0.0f);
   for_each_element(c, e, ctx.path, [&](std::uint64_t i) {
-    for (std::size_t k = 0; k < roles.size(); ++k) {
+    for (std::size_t k = 0; k < layout.roles.size(); ++k) {
       const PlyProperty& prop = e.properties[k];
-      switch (roles[k]) {
+      switch (layout.roles[k]) {
         case Role::Indices: read_polygon(c, prop, ctx, i, &r.polygon); break;
-        case Role::Quality: r.quality = static_cast<float>(c.value(prop.type)); break;
+        case Role::Attribute:
+          r.values[layout.slot[k]] = static_cast<float>(c.value(prop.type));
+          break;
         case Role::Red: r.color[0] = static_cast<std::uint8_t>(c.value(prop.type)); break;
         case Role::Green: r.color[1] = static_cast<std::uint8_t>(c.value(prop.type)); break;
         case Role::Blue: r.color[2] = static_cast<std::uint8_t>(c.value(prop.type)); break;
         default: skip_property(c, prop); break;
       }
     }
-    add_polygon(r, has_quality, has_colors, mesh, &quality);
+    add_polygon(r, layout.has_colors, mesh, &attributes);
   });
-  if (has_quality) mesh->face_attributes["quality"] = std::move(quality);
+  for (std::size_t a = 0; a < attributes.size(); ++a)
+    mesh->face_attributes[layout.attributes[a]] = std::move(attributes[a]);
 }
 
 template <class Cursor>

@@ -373,7 +373,8 @@ TriangleMesh decimate(const TriangleMesh& mesh, double strength, std::size_t& re
   om.request_face_normals();
   std::vector<OmMesh::VertexHandle> handles;
   handles.reserve(mesh.vertices.size());
-  for (const Vec3& p : mesh.vertices) handles.push_back(om.add_vertex(OmMesh::Point(p.x(), p.y(), p.z())));
+  for (const Vec3& p : mesh.vertices)
+    handles.push_back(om.add_vertex(OmMesh::Point(p.x(), p.y(), p.z())));
   std::vector<std::size_t> rejected_faces;
   {
     MuteOpenMeshErrors mute;
@@ -446,7 +447,7 @@ DegradeResult degrade(const TriangleMesh& truth, const std::vector<Degradation>&
     const Degradation& d = degradations[i];
     check_degradation(d, degradation_name(d.kind) + " (#" + std::to_string(i + 1) + ")");
     if (d.kind == DegradationKind::Decimate) {
-      std::size_t rejected = 0;
+      std::size_t rejected = 0;  // not reported: DegradeResult has no field for it
       result.mesh = decimate(result.mesh, d.strength, rejected);
       continue;
     }

@@ -1,0 +1,80 @@
+// Photo-consistency Reconstruction Index (PRI) per face, after Morreale,
+// Romanoni, Matteucci, "Predicting the Next Best View for 3D Mesh
+// Refinement" (2018), exactly as ../shared/SPEC.md sections 2-3 define it:
+// each face is sampled on a barycentric lattice, the 3-D samples are
+// projected into every view that sees the face, and the patches of every
+// pair of views are compared (SSD or NCC). Higher PRI = worse.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "meshnbv/progress.h"
+#include "meshnbv/scene.h"
+#include "meshnbv/visibility.h"
+
+namespace meshnbv {
+
+enum class Measure { SSD, NCC };
+Measure parse_measure(const std::string& name);  // "ssd" | "ncc"
+std::string measure_name(Measure measure);
+
+enum class FaceStatus : std::uint8_t {
+  Observed = 0,     // PRI defined
+  Unobserved = 1,   // seen by fewer than 2 views
+  Textureless = 2,  // seen by >= 2 views, but every pair was textureless (NCC)
+};
+
+struct PriOptions {
+  Measure measure = Measure::SSD;  // the paper's choice for its experiments
+  int samples_per_side = 0;        // r of the lattice; 0 = automatic (largest projected edge, in [2, 32])
+  int max_views_per_face = 0;      // 0 = all; else the smallest incidence angles
+  bool color = false;              // compare R, G, B samples instead of luminance
+  int threads = 0;                 // 0 = all cores
+  double textureless_variance = 1e-6;  // NCC: patches with lower variance are textureless
+  VisibilityOptions visibility;
+
+  void check() const;  // throws Error for values out of range
+};
+
+struct PriResult {
+  std::vector<float> pri;        // NaN where undefined
+  std::vector<int> pri_views;    // views that see the face (after max_views_per_face)
+  std::vector<FaceStatus> status;
+  std::size_t observed = 0, unobserved = 0, textureless = 0;
+  std::size_t views_used = 0;    // views with an image that took part
+  double seconds = 0;
+};
+
+// Uses every view with an image and used == true. Throws Error when the
+// mesh is invalid or an image is missing/undecodable; Cancelled when the
+// progress callback says stop. Deterministic for any thread count.
+PriResult compute_pri(const Scene& scene, const PriOptions& options = {},
+                      const ProgressCallback& progress = {});
+
+// The similarity errors of the SPEC on two sample vectors of equal length:
+// SSD = mean squared difference; NCC error = (1 - rho) / 2, or a negative
+// value when either patch is textureless (variance < min_variance).
+double ssd_error(const float* a, const float* b, std::size_t n);
+double ncc_error(const float* a, const float* b, std::size_t n, double min_variance);
+
+// Colours for a PRI map: hue from green (low PRI) to red (high PRI) over
+// [lo, hi]; grey where the PRI is NaN.
+std::vector<Rgb8> pri_colors(const std::vector<float>& pri, double lo, double hi);
+
+struct PriSummary {
+  std::size_t faces = 0, observed = 0, unobserved = 0, textureless = 0;
+  std::vector<std::pair<double, double>> percentiles;  // (percent, value) over observed faces
+  double histogram_min = 0, histogram_max = 0;
+  std::vector<std::size_t> histogram;  // equal-width bins over [min, max]
+  struct Worst {
+    int face;
+    float pri;
+    int views;
+  };
+  std::vector<Worst> worst;  // the K highest PRI, worst first
+};
+PriSummary summarize_pri(const PriResult& result, std::size_t worst_k = 10, int bins = 20);
+
+}  // namespace meshnbv

@@ -1,0 +1,52 @@
+// Visibility of vertices and faces in views (SPEC section 2), by ray
+// casting with Embree. Vertex visibility is computed once per
+// (vertex, view) and shared by all faces: O(V x views) rays.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "meshnbv/camera.h"
+#include "meshnbv/mesh.h"
+#include "meshnbv/progress.h"
+#include "meshnbv/raycaster.h"
+
+namespace meshnbv {
+
+struct VisibilityOptions {
+  double relative_eps = 1e-4;           // the segment stops at (1 - eps) |v - C| ...
+  double absolute_eps_of_diagonal = 1e-6;  // ... minus this share of the bbox diagonal
+};
+
+class VertexVisibility {
+ public:
+  VertexVisibility() = default;
+  // Vertex v is visible in camera i when it is in front (z > 0), projects
+  // inside [0, W-1] x [0, H-1], and nothing hits the segment from the
+  // centre before (1 - eps) |v - C| - bias. Runs in parallel over vertices.
+  VertexVisibility(const TriangleMesh& mesh, const RayCaster& caster,
+                   const std::vector<PinholeCamera>& cameras, const VisibilityOptions& options = {},
+                   const ProgressCallback& progress = {});
+
+  bool visible(std::size_t vertex, std::size_t view) const {
+    return bits_[vertex * num_views_ + view] != 0;
+  }
+  std::size_t num_views() const { return num_views_; }
+  std::size_t num_vertices() const { return num_views_ ? bits_.size() / num_views_ : 0; }
+
+ private:
+  std::size_t num_views_ = 0;
+  std::vector<std::uint8_t> bits_;  // vertex-major
+};
+
+// Face f is visible in view i when its three vertices are visible and it
+// faces the camera: dot(n_f, C_i - centroid_f) > 0 (the back-face rule).
+bool face_visible(const TriangleMesh& mesh, const std::vector<Vec3>& face_normals,
+                  const VertexVisibility& visibility, std::size_t face, std::size_t view,
+                  const Vec3& camera_center);
+
+// Visibility of a single point from a camera under the same rules.
+bool point_visible(const RayCaster& caster, const PinholeCamera& camera, const Vec3& point,
+                   double relative_eps, double absolute_eps);
+
+}  // namespace meshnbv

@@ -1,0 +1,46 @@
+#include "meshnbv/visibility.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+namespace meshnbv {
+
+bool point_visible(const RayCaster& caster, const PinholeCamera& camera, const Vec3& point,
+                   double relative_eps, double absolute_eps) {
+  Vec2 px;
+  if (!camera.project(point, &px) || !camera.in_image(px)) return false;
+  return caster.segment_clear(camera.center(), point, relative_eps, absolute_eps);
+}
+
+VertexVisibility::VertexVisibility(const TriangleMesh& mesh, const RayCaster& caster,
+                                   const std::vector<PinholeCamera>& cameras,
+                                   const VisibilityOptions& options,
+                                   const ProgressCallback& progress)
+    : num_views_(cameras.size()), bits_(mesh.num_vertices() * cameras.size(), 0) {
+  const double abs_eps = options.absolute_eps_of_diagonal * mesh.bounding_box().diagonal();
+  const std::size_t V = mesh.num_vertices();
+  // Chunks of vertices in parallel; progress and cancellation between chunks.
+  const std::size_t chunk = 16384;
+  for (std::size_t begin = 0; begin < V; begin += chunk) {
+    const std::size_t end = std::min(V, begin + chunk);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(begin, end),
+                      [&](const tbb::blocked_range<std::size_t>& r) {
+                        for (std::size_t v = r.begin(); v < r.end(); ++v)
+                          for (std::size_t i = 0; i < num_views_; ++i)
+                            bits_[v * num_views_ + i] = point_visible(
+                                caster, cameras[i], mesh.vertices[v], options.relative_eps, abs_eps);
+                      });
+    report_progress(progress, double(end) / V, "visibility");
+  }
+}
+
+bool face_visible(const TriangleMesh& mesh, const std::vector<Vec3>& face_normals,
+                  const VertexVisibility& visibility, std::size_t face, std::size_t view,
+                  const Vec3& camera_center) {
+  const Face& f = mesh.faces[face];
+  for (int k = 0; k < 3; ++k)
+    if (!visibility.visible(std::size_t(f[k]), view)) return false;
+  return face_normals[face].dot(camera_center - mesh.face_centroid(face)) > 0;
+}
+
+}  // namespace meshnbv
