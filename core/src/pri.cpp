@@ -31,6 +31,8 @@ void PriOptions::check() const {
                 std::to_string(max_views_per_face));
   if (threads < 0) throw Error("threads must be >= 0 (0 = all cores)");
   if (!(textureless_variance >= 0)) throw Error("textureless_variance must be >= 0");
+  if (!(max_incidence_angle > 0 && max_incidence_angle <= 90))
+    throw Error("max_incidence_angle must be in (0, 90] degrees");
   if (!(visibility.relative_eps >= 0 && visibility.relative_eps < 1))
     throw Error("visibility relative eps must be in [0, 1)");
 }
@@ -93,11 +95,13 @@ FaceViews select_views(const TriangleMesh& mesh, const std::vector<Vec3>& normal
   std::vector<Candidate> candidates;
   const Vec3 centroid = mesh.face_centroid(f);
   const Face& face = mesh.faces[f];
+  const double min_cosine = std::cos(o.max_incidence_angle * M_PI / 180.0);
   for (std::size_t i = 0; i < cams.size(); ++i) {
     if (!face_visible(mesh, normals, vis, f, i, centres[i])) continue;
     Vec2 p[3];
     for (int k = 0; k < 3; ++k) cams[i].project(mesh.vertices[face[k]], &p[k]);
     const double cosine = normals[f].dot((centres[i] - centroid).normalized());
+    if (cosine < min_cosine) continue;  // grazing view
     const double max_edge = std::max({(p[1] - p[0]).norm(), (p[2] - p[1]).norm(), (p[0] - p[2]).norm()});
     candidates.push_back({int(i), std::acos(std::clamp(cosine, -1.0, 1.0)),
                           projected_area(p[0], p[1], p[2]), max_edge});

@@ -8,11 +8,11 @@ namespace meshnbv {
 std::vector<Material> default_materials() {
   return {
       {Pattern::Noise, Vec3(0.78, 0.74, 0.66), Vec3(0.5, 0.48, 0.44), 1.5, 0.35},   // plaster
-      {Pattern::Bricks, Vec3(0.66, 0.33, 0.24), Vec3(0.82, 0.8, 0.74), 0.5, 0.3},  // bricks
+      {Pattern::Bricks, Vec3(0.66, 0.33, 0.24), Vec3(0.82, 0.8, 0.74), 1.0, 0.3},  // bricks
       {Pattern::Windows, Vec3(0.85, 0.8, 0.68), Vec3(0.18, 0.24, 0.32), 3.0, 0.3},  // facade
-      {Pattern::Stripes, Vec3(0.72, 0.7, 0.62), Vec3(0.52, 0.5, 0.46), 0.8, 0.35},  // stone
+      {Pattern::Stripes, Vec3(0.72, 0.7, 0.62), Vec3(0.52, 0.5, 0.46), 1.5, 0.35},  // stone
       {Pattern::Tiles, Vec3(0.62, 0.28, 0.2), Vec3(0.36, 0.16, 0.12), 0.4, 0.3},    // roof
-      {Pattern::Noise, Vec3(0.45, 0.52, 0.36), Vec3(0.35, 0.33, 0.3), 4.0, 0.45},   // ground
+      {Pattern::Tiles, Vec3(0.55, 0.56, 0.5), Vec3(0.3, 0.3, 0.27), 1.2, 0.45},    // paved ground
   };
 }
 
@@ -48,8 +48,8 @@ void plane_coords(const Vec3& p, const Vec3& n, double* s, double* t) {
 }
 }  // namespace
 
-SolidTexture::SolidTexture(std::uint64_t seed, std::vector<Material> materials)
-    : seed_(seed), materials_(std::move(materials)) {
+SolidTexture::SolidTexture(std::uint64_t seed, std::vector<Material> materials, double min_period)
+    : seed_(seed), materials_(std::move(materials)), min_period_(min_period) {
   if (materials_.empty()) materials_ = default_materials();
 }
 
@@ -77,58 +77,79 @@ double SolidTexture::value_noise(const Vec3& p) const {
 double SolidTexture::fractal_noise(const Vec3& p, double scale) const {
   double sum = 0, norm = 0, amp = 1, freq = 1.0 / scale;
   for (int octave = 0; octave < 5; ++octave) {
-    sum += amp * value_noise(p * freq + Vec3(17.0 * octave, 31.0 * octave, 7.0 * octave));
-    norm += amp;
+    // Weight 1 for periods >= 2 min_period, fading to 0 at min_period.
+    const double w = min_period_ > 0 ? std::clamp(1.0 / (freq * min_period_) - 1.0, 0.0, 1.0) : 1.0;
+    if (w <= 0) break;
+    sum += w * amp * value_noise(p * freq + Vec3(17.0 * octave, 31.0 * octave, 7.0 * octave));
+    norm += w * amp;
     amp *= 0.5;
     freq *= 2.0;
   }
-  return sum / norm;
+  return norm > 0 ? sum / norm : 0.5;
 }
 
 Vec3 SolidTexture::albedo(const Vec3& p, const Vec3& n, int material) const {
   const Material& m =
       materials_[material >= 0 && material < int(materials_.size()) ? material : 0];
-  // Fine grain everywhere, so no surface is textureless at close range.
-  const double grain = fractal_noise(p, 0.12 * m.scale);
+  // Fine grain everywhere (down to the band limit), so no surface is
+  // textureless.
+  const double grain = fractal_noise(p, std::max(0.12 * m.scale, 2.0 * min_period_));
   const double coarse = fractal_noise(p, m.scale);
   const double variation = 1.0 - m.noise + 2.0 * m.noise * (0.6 * coarse + 0.4 * grain);
   double s, t;
   plane_coords(p, n, &s, &t);
+  // Pattern edges are smoothed over `soft` metres (half the band limit) so
+  // that they do not alias either.
+  const double soft = 0.5 * min_period_;
+  // 0 at distance <= -soft/2 from an edge, 1 at >= +soft/2 (hard step if soft = 0).
+  auto ramp = [soft](double signed_distance) {
+    if (soft <= 0) return signed_distance > 0 ? 1.0 : 0.0;
+    const double x = std::clamp(signed_distance / soft + 0.5, 0.0, 1.0);
+    return x * x * (3 - 2 * x);
+  };
   Vec3 colour = m.base;
   switch (m.pattern) {
     case Pattern::Noise: break;
     case Pattern::Bricks:
     case Pattern::Tiles: {
-      // Running bond: rows of height scale/3 (tiles: scale/2), odd rows shifted.
+      // Running bond: rows of height scale/3 (tiles: scale/2), odd rows
+      // shifted by half a unit; joints centred on the cell borders.
       const double h = m.pattern == Pattern::Bricks ? m.scale / 3.0 : m.scale / 2.0;
       const double row = std::floor(t / h);
       const double shift = (long long)row % 2 ? 0.5 * m.scale : 0.0;
       const double col = std::floor((s + shift) / m.scale);
-      const double fu = frac((s + shift) / m.scale), fv = frac(t / h);
-      const double mortar = 0.06;
-      if (fu < mortar || fv < mortar * 3.0) {
-        colour = m.accent;
-      } else {
-        colour = m.base * (0.75 + 0.5 * hash01(seed_ + std::uint64_t(material), (long long)row,
-                                               (long long)col));
-      }
+      const double fu = frac((s + shift) / m.scale) * m.scale, fv = frac(t / h) * h;
+      const double to_joint = std::min({fu, m.scale - fu, fv, h - fv});
+      const double half_joint = 0.5 * std::max(0.06 * m.scale, 0.5 * min_period_);
+      const Vec3 unit = m.base * (0.85 + 0.3 * hash01(seed_ + std::uint64_t(material),
+                                                      (long long)row, (long long)col));
+      const double w = ramp(to_joint - half_joint);
+      colour = (1 - w) * m.accent + w * unit;
       break;
     }
     case Pattern::Windows: {
-      // A window per scale x scale cell, glass with a light frame.
-      const double fu = frac(s / m.scale), fv = frac(t / m.scale);
-      const bool in_window = fu > 0.3 && fu < 0.7 && fv > 0.3 && fv < 0.75;
-      const bool in_frame = fu > 0.27 && fu < 0.73 && fv > 0.27 && fv < 0.78;
-      if (in_window)
-        colour = m.accent * (0.7 + 0.6 * hash01(seed_, (long long)std::floor(s / m.scale),
-                                                (long long)std::floor(t / m.scale)));
-      else if (in_frame)
-        colour = Vec3(0.92, 0.92, 0.9);
+      // A window per scale x scale cell: glass with a light frame. Signed
+      // distances (metres) to the glass and frame rectangles, positive inside.
+      const double fu = frac(s / m.scale) * m.scale, fv = frac(t / m.scale) * m.scale;
+      auto inside = [&](double u0, double u1, double v0, double v1) {
+        return std::min({fu - u0 * m.scale, u1 * m.scale - fu, fv - v0 * m.scale, v1 * m.scale - fv});
+      };
+      const double glass = ramp(inside(0.3, 0.7, 0.3, 0.75));
+      const double frame = ramp(inside(0.27, 0.73, 0.27, 0.78));
+      const Vec3 pane = m.accent * (0.7 + 0.6 * hash01(seed_, (long long)std::floor(s / m.scale),
+                                                       (long long)std::floor(t / m.scale)));
+      const Vec3 white(0.92, 0.92, 0.9);
+      colour = (1 - frame) * m.base + frame * ((1 - glass) * white + glass * pane);
       break;
     }
     case Pattern::Stripes: {
-      const double band = std::floor(t / m.scale);
-      colour = (long long)band % 2 ? m.accent : m.base;
+      // Alternating bands; the distance to the nearest band border decides.
+      const double ft = frac(t / m.scale) * m.scale;
+      const bool odd = (long long)std::floor(t / m.scale) % 2 != 0;
+      const double to_border = std::min(ft, m.scale - ft);
+      const double w = 0.5 + 0.5 * (2 * ramp(to_border) - 1);  // 0.5 on the border, 1 inside
+      const Vec3 own = odd ? m.accent : m.base, other = odd ? m.base : m.accent;
+      colour = w * own + (1 - w) * other;
       break;
     }
   }

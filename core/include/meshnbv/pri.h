@@ -33,6 +33,11 @@ struct PriOptions {
   bool color = false;              // compare R, G, B samples instead of luminance
   int threads = 0;                 // 0 = all cores
   double textureless_variance = 1e-6;  // NCC: patches with lower variance are textureless
+  // A view whose direction makes a larger angle with the face normal does
+  // not count as seeing the face [deviation, docs/deviations.md]: at grazing
+  // angles the patch projects to a sliver and its samples are meaningless.
+  // 90 = the SPEC's plain back-face rule.
+  double max_incidence_angle = 80.0;  // degrees
   VisibilityOptions visibility;
 
   void check() const;  // throws Error for values out of range

@@ -1,5 +1,6 @@
 #include "meshnbv/synth/project.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -41,15 +42,26 @@ TriangleMesh load_object(const std::string& path) {
   return m;
 }
 
+// The finest texture period, in pixels at the median camera distance. Below
+// about 4 px, the view-dependent pixel footprint (foreshortening, distance)
+// filters the texture differently in each view and the truth itself stops
+// being photo-consistent; measured in tests/core/test_pri_quality.cpp.
+constexpr double kBandLimitPixels = 4.0;
+
 // Texture periods in metres suit buildings; an object of any size gets its
-// patterns scaled to its own size.
-SolidTexture make_texture(const SynthOptions& o, const TriangleMesh& truth) {
+// patterns scaled to its own size. The texture is band-limited (see above).
+SolidTexture make_texture(const SynthOptions& o, const TriangleMesh& truth,
+                          const std::vector<View>& views) {
   std::vector<Material> materials = default_materials();
   if (o.scene == "object") {
     const double diag = truth.bounding_box().diagonal();
     for (auto& m : materials) m.scale *= diag / 20.0;
   }
-  return SolidTexture(o.seed, materials);
+  std::vector<double> footprint;
+  const Vec3 centre = truth.bounding_box().center();
+  for (const auto& v : views) footprint.push_back((v.camera.center() - centre).norm() / v.camera.fx);
+  std::nth_element(footprint.begin(), footprint.begin() + footprint.size() / 2, footprint.end());
+  return SolidTexture(o.seed, materials, kBandLimitPixels * footprint[footprint.size() / 2]);
 }
 
 std::string describe(const SynthOptions& o) {
@@ -147,7 +159,7 @@ SynthProject write_synthetic_project(const SynthOptions& options, const std::str
   fs::create_directories(fs::path(folder) / "images");
 
   const RayCaster caster(p.truth);
-  const SolidTexture texture = make_texture(o, p.truth);
+  const SolidTexture texture = make_texture(o, p.truth, p.scene.views);
   RenderInputs in{&p.truth, &caster, &texture, p.truth.face_attribute(kMaterialAttribute)};
   for (std::size_t i = 0; i < p.scene.views.size(); ++i) {
     View& v = p.scene.views[i];
