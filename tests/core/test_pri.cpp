@@ -1,0 +1,304 @@
+// PRI edge cases and invariances on small rendered scenes with known geometry.
+// Scene: a 4 m x 4 m textured plane z = 0 (faces of 0.5 m), cameras 5 m
+// above it looking at the centre from different sides, 200x150 images.
+#include <cmath>
+#include <filesystem>
+
+#include "meshnbv/error.h"
+#include "meshnbv/pri.h"
+#include "meshnbv/raycaster.h"
+#include "meshnbv/renderer.h"
+#include "meshnbv/synth/generators.h"
+#include "test_util.h"
+
+using namespace meshnbv;
+
+namespace {
+
+struct PlaneScene {
+  Scene scene;
+  TriangleMesh rendered;  // what the images show (may differ from scene.mesh)
+};
+
+// Renders `truth` (material 0 = noise texture at 0.5 m) from cameras at
+// `eyes` looking at `targets` (default the origin); the scene mesh starts as
+// the truth.
+PlaneScene make_scene(const std::string& name, const TriangleMesh& truth,
+                      const std::vector<Vec3>& eyes, const std::vector<Material>& materials = {
+                          {Pattern::Noise, Vec3(0.7, 0.6, 0.5), Vec3(0.3, 0.3, 0.3), 0.5, 0.45}},
+                      const std::vector<Vec3>& targets = {}) {
+  const std::string dir = test::temp_dir("pri_" + name);
+  PlaneScene s;
+  s.rendered = truth;
+  s.scene.mesh = truth;
+  s.scene.mesh.face_attributes.clear();
+  const RayCaster caster(truth);
+  const SolidTexture texture(3, materials, 0.1);
+  for (std::size_t i = 0; i < eyes.size(); ++i) {
+    View v;
+    v.label = "v" + std::to_string(i);
+    const Vec3 target = i < targets.size() ? targets[i] : Vec3(0, 0, 0);
+    v.camera = PinholeCamera::look_at(eyes[i], target, Vec3(0, 1, 0.3), 180, 180, 99.5, 74.5, 200, 150);
+    v.image_path = dir + "/" + v.label + ".png";
+    render({&truth, &caster, &texture, truth.face_attribute(synth::kMaterialAttribute)}, v.camera)
+        .save(v.image_path);
+    s.scene.views.push_back(v);
+  }
+  return s;
+}
+
+TriangleMesh plane() { return synth::make_ground(Vec3(-2, -2, 0), Vec3(2, 2, 0), 0.5, 0); }
+
+const std::vector<Vec3> kEyes = {{0.5, -1.0, 5.0}, {-1.5, 0.5, 5.0}, {1.5, 1.0, 4.5}, {0.0, 2.0, 5.0}};
+
+int face_at(const TriangleMesh& m, const Vec3& p) {
+  int best = -1;
+  double d = 1e9;
+  for (std::size_t f = 0; f < m.num_faces(); ++f)
+    if ((m.face_centroid(f) - p).norm() < d) d = (m.face_centroid(f) - p).norm(), best = int(f);
+  return best;
+}
+
+}  // namespace
+
+TEST(PriMeasures, SsdAndNccByHand) {
+  const float a[4] = {0.1f, 0.2f, 0.3f, 0.4f};
+  const float b[4] = {0.2f, 0.2f, 0.1f, 0.4f};
+  // SSD: mean of (0.01, 0, 0.04, 0) = 0.0125
+  EXPECT_NEAR(ssd_error(a, b, 4), 0.0125, 1e-7);  // float inputs
+  // NCC of a with itself scaled and shifted: rho = 1, error 0.
+  const float c[4] = {0.3f, 0.5f, 0.7f, 0.9f};
+  EXPECT_NEAR(ncc_error(a, c, 4, 1e-6), 0.0, 1e-6);
+  // Reversed: rho = -1, error 1.
+  const float d[4] = {0.4f, 0.3f, 0.2f, 0.1f};
+  EXPECT_NEAR(ncc_error(a, d, 4, 1e-6), 1.0, 1e-6);
+  // a vs b: means 0.25, 0.225; sum of products of deviations 0.025,
+  // of squares 0.05 and 0.0475: rho = 0.025 / sqrt(0.05 * 0.0475) = 0.513.
+  const double rho = 0.025 / std::sqrt(0.05 * 0.0475);
+  EXPECT_NEAR(ncc_error(a, b, 4, 1e-6), (1 - rho) / 2, 1e-6);
+  // Constant patch: textureless.
+  const float flat[4] = {0.5f, 0.5f, 0.5f, 0.5f};
+  EXPECT_LT(ncc_error(a, flat, 4, 1e-6), 0);
+}
+
+TEST(Pri, TruthIsConsistentAndAShiftedMeshIsNot) {
+  PlaneScene s = make_scene("shift", plane(), kEyes);
+  const PriResult truth = compute_pri(s.scene);
+  // Raise the reconstruction 10 cm (about 3 px of parallax between views).
+  for (auto& v : s.scene.mesh.vertices) v.z() += 0.1;
+  const PriResult wrong = compute_pri(s.scene);
+  const PriSummary a = summarize_pri(truth), b = summarize_pri(wrong);
+  EXPECT_EQ(truth.observed, truth.pri.size());
+  EXPECT_LT(a.percentiles[3].second, 2e-4);        // median
+  EXPECT_GT(b.percentiles[3].second, 10 * a.percentiles[3].second);
+}
+
+TEST(Pri, FaceSeenByOneViewIsUnobserved) {
+  // Camera 0 sees the whole plane; camera 1, 2 m above the (-1.5, -1.5)
+  // corner looking straight down, sees only about 1 m around it.
+  const std::vector<Material> texture = {
+      {Pattern::Noise, Vec3(0.7, 0.6, 0.5), Vec3(0.3, 0.3, 0.3), 0.5, 0.45}};
+  PlaneScene s = make_scene("one_view", plane(), {{0, 0, 5}, {-1.5, -1.5, 2}}, texture,
+                            {{0, 0, 0}, {-1.5, -1.5, 0}});
+  const PriResult r = compute_pri(s.scene);
+  const int far_corner = face_at(s.scene.mesh, Vec3(1.8, 1.8, 0));
+  EXPECT_EQ(r.status[far_corner], FaceStatus::Unobserved);
+  EXPECT_EQ(r.pri_views[far_corner], 1);
+  EXPECT_TRUE(std::isnan(r.pri[far_corner]));
+  const int near_corner = face_at(s.scene.mesh, Vec3(-1.8, -1.8, 0));
+  EXPECT_EQ(r.status[near_corner], FaceStatus::Observed);
+  EXPECT_EQ(r.pri_views[near_corner], 2);
+}
+
+TEST(Pri, OccludedFaceLosesTheView) {
+  // A box floating 2 m above the plane on the line from camera 0 to the
+  // plane's centre hides the central faces from camera 0 only.
+  const Vec3 eye0 = kEyes[0], mid = 0.55 * eye0;
+  TriangleMesh m = plane();
+  m.append(synth::make_box(mid - Vec3(0.4, 0.4, 0.2), mid + Vec3(0.4, 0.4, 0.2), 0.5, 0));
+  PlaneScene open = make_scene("unoccluded", plane(), kEyes);
+  PlaneScene s = make_scene("occluded", m, kEyes);
+  const PriResult without = compute_pri(open.scene), with = compute_pri(s.scene);
+  const int centre = face_at(s.scene.mesh, Vec3(0.1, -0.1, 0));
+  const int far = face_at(s.scene.mesh, Vec3(1.2, 1.2, 0));  // off the box's shadow cone
+  EXPECT_EQ(with.pri_views[centre], without.pri_views[centre] - 1);
+  EXPECT_EQ(with.pri_views[far], without.pri_views[far]);
+  EXPECT_EQ(with.status[centre], FaceStatus::Observed);
+}
+
+TEST(Pri, BackFacingFaceIsUnobserved) {
+  PlaneScene s = make_scene("backface", plane(), kEyes);
+  // Flip one face: its normal now points away from every camera.
+  std::swap(s.scene.mesh.faces[5][1], s.scene.mesh.faces[5][2]);
+  const PriResult r = compute_pri(s.scene);
+  EXPECT_EQ(r.status[5], FaceStatus::Unobserved);
+  EXPECT_EQ(r.pri_views[5], 0);
+  EXPECT_EQ(r.status[6], FaceStatus::Observed);
+}
+
+TEST(Pri, FacePartlyOutsideAnImage) {
+  // Camera 1 looks away to the side: the plane's edge faces are cut by its border.
+  PlaneScene s = make_scene("partly_outside", plane(), kEyes);
+  View side = s.scene.views[1];
+  side.camera = PinholeCamera::look_at(Vec3(0, 0, 5), Vec3(-3.4, 0, 0), Vec3(0, 1, 0), 180, 180,
+                                       99.5, 74.5, 200, 150);
+  s.scene.views[1] = side;  // the image no longer matches, but visibility is geometry only
+  const PriResult r = compute_pri(s.scene);
+  // Count faces with a vertex inside and a vertex outside camera 1's image:
+  // none of them may count camera 1.
+  std::size_t cut = 0;
+  for (std::size_t f = 0; f < s.scene.mesh.num_faces(); ++f) {
+    int inside = 0;
+    for (int k = 0; k < 3; ++k) {
+      Vec2 px;
+      inside += side.camera.project(s.scene.mesh.vertices[s.scene.mesh.faces[f][k]], &px) &&
+                side.camera.in_image(px);
+    }
+    if (inside == 0 || inside == 3) continue;
+    ++cut;
+    // Seen by cameras 0, 2, 3 at most.
+    EXPECT_LE(r.pri_views[f], 3) << "face " << f;
+  }
+  EXPECT_GT(cut, 0u);
+}
+
+TEST(Pri, TexturelessPairsUnderNcc) {
+  const std::vector<Material> flat = {{Pattern::Noise, Vec3(0.5, 0.5, 0.5), Vec3(0.5, 0.5, 0.5), 1.0, 0.0}};
+  PlaneScene s = make_scene("textureless", plane(), kEyes, flat);
+  PriOptions ncc;
+  ncc.measure = Measure::NCC;
+  const PriResult r = compute_pri(s.scene, ncc);
+  // Every interior face is textureless; faces on the plane's border touch
+  // its silhouette against the sky and do have contrast.
+  std::size_t interior = 0;
+  for (std::size_t f = 0; f < r.pri.size(); ++f) {
+    const Vec3 c = s.scene.mesh.face_centroid(f);
+    if (std::abs(c.x()) > 1.4 || std::abs(c.y()) > 1.4) continue;
+    ++interior;
+    EXPECT_EQ(r.status[f], FaceStatus::Textureless) << f;
+    EXPECT_TRUE(std::isnan(r.pri[f]));
+  }
+  EXPECT_GT(interior, 50u);
+  EXPECT_GE(r.textureless, interior);
+  // SSD has no such notion: a flat, correct surface scores 0.
+  const PriResult ssd = compute_pri(s.scene);
+  EXPECT_EQ(ssd.observed, ssd.pri.size());
+  EXPECT_LT(summarize_pri(ssd).percentiles[3].second, 1e-5);
+}
+
+TEST(Pri, EmptyMeshAndNoImagesAreErrors) {
+  PlaneScene s = make_scene("errors", plane(), kEyes);
+  Scene empty = s.scene;
+  empty.mesh = TriangleMesh();
+  MESHNBV_EXPECT_ERROR_CONTAINS(compute_pri(empty), "no faces");
+  Scene no_images = s.scene;
+  for (auto& v : no_images.views) v.image_path.clear();
+  MESHNBV_EXPECT_ERROR_CONTAINS(compute_pri(no_images), "at least 2 views with images");
+  Scene missing = s.scene;
+  missing.views[2].image_path += ".gone";
+  MESHNBV_EXPECT_ERROR_CONTAINS(compute_pri(missing), "image file not found");
+  PriOptions bad;
+  bad.max_views_per_face = 1;
+  MESHNBV_EXPECT_ERROR_CONTAINS(compute_pri(s.scene, bad), "max_views_per_face");
+}
+
+TEST(Pri, PermutingViewsLeavesPriUnchanged) {
+  PlaneScene s = make_scene("permute", plane(), kEyes);
+  for (auto& v : s.scene.mesh.vertices) v.z() += 0.05 * std::sin(3 * v.x());  // some error
+  const PriResult a = compute_pri(s.scene);
+  std::reverse(s.scene.views.begin(), s.scene.views.end());
+  std::swap(s.scene.views[0], s.scene.views[2]);
+  const PriResult b = compute_pri(s.scene);
+  for (std::size_t f = 0; f < a.pri.size(); ++f) {
+    ASSERT_EQ(a.pri_views[f], b.pri_views[f]);
+    if (!std::isnan(a.pri[f])) {
+      EXPECT_NEAR(a.pri[f], b.pri[f], 1e-7 + 1e-5 * a.pri[f]) << f;
+    }
+  }
+}
+
+TEST(Pri, NccIgnoresAffineBrightnessChange) {
+  PlaneScene s = make_scene("affine", plane(), kEyes);
+  for (auto& v : s.scene.mesh.vertices) v.z() += 0.05 * std::sin(3 * v.x());
+  PriOptions ncc;
+  ncc.measure = Measure::NCC;
+  const PriResult a = compute_pri(s.scene, ncc);
+  const PriResult ssd_before = compute_pri(s.scene);
+  // Image 2 becomes 0.7 I + 0.2 (stays in [0, 1]; 8-bit rounding remains).
+  Image img = Image::load(s.scene.views[2].image_path);
+  for (std::size_t k = 0; k < img.bytes(); ++k)
+    img.data()[k] = std::uint8_t(std::lround(0.7 * img.data()[k] + 0.2 * 255));
+  img.save(s.scene.views[2].image_path);
+  s.scene.images->clear();
+  const PriResult b = compute_pri(s.scene, ncc);
+  double worst = 0;
+  for (std::size_t f = 0; f < a.pri.size(); ++f)
+    if (!std::isnan(a.pri[f])) worst = std::max(worst, double(std::abs(a.pri[f] - b.pri[f])));
+  EXPECT_LT(worst, 0.01) << "largest change of a face's NCC error";
+  // SSD does see the change.
+  const PriResult ssd = compute_pri(s.scene);
+  EXPECT_GT(summarize_pri(ssd).percentiles[3].second, 3 * summarize_pri(ssd_before).percentiles[3].second);
+}
+
+TEST(Pri, SameResultForAnyThreadCount) {
+  PlaneScene s = make_scene("threads", plane(), kEyes);
+  for (auto& v : s.scene.mesh.vertices) v.z() += 0.05 * std::sin(3 * v.y());
+  PriOptions one, two;
+  one.threads = 1;
+  two.threads = 2;
+  const PriResult a = compute_pri(s.scene, one), b = compute_pri(s.scene, two);
+  for (std::size_t f = 0; f < a.pri.size(); ++f) {
+    if (std::isnan(a.pri[f])) {
+      EXPECT_TRUE(std::isnan(b.pri[f]));
+    } else {
+      EXPECT_EQ(a.pri[f], b.pri[f]) << f;  // bitwise
+    }
+  }
+}
+
+TEST(Pri, MaxViewsKeepsSmallestIncidence) {
+  PlaneScene s = make_scene("max_views", plane(), kEyes);
+  PriOptions o;
+  o.max_views_per_face = 2;
+  const PriResult r = compute_pri(s.scene, o);
+  for (std::size_t f = 0; f < r.pri.size(); ++f) EXPECT_LE(r.pri_views[f], 2);
+  EXPECT_EQ(r.observed, r.pri.size());
+}
+
+TEST(Pri, SamplesPerSideOption) {
+  PlaneScene s = make_scene("samples", plane(), kEyes);
+  PriOptions o;
+  o.samples_per_side = 3;
+  const PriResult r = compute_pri(s.scene, o);
+  EXPECT_EQ(r.observed, r.pri.size());
+  o.samples_per_side = 100;
+  MESHNBV_EXPECT_ERROR_CONTAINS(compute_pri(s.scene, o), "samples_per_side");
+}
+
+TEST(Pri, CancelStops) {
+  PlaneScene s = make_scene("cancel", plane(), kEyes);
+  EXPECT_THROW(compute_pri(s.scene, {}, [](double, const std::string&) { return false; }), Cancelled);
+}
+
+TEST(Pri, ColoursAndSummary) {
+  const std::vector<float> pri = {0.0f, 0.5f, 1.0f, std::numeric_limits<float>::quiet_NaN()};
+  const auto c = pri_colors(pri, 0.0, 1.0);
+  EXPECT_EQ(c[0], (Rgb8{0, 255, 0}));
+  EXPECT_EQ(c[1], (Rgb8{255, 255, 0}));
+  EXPECT_EQ(c[2], (Rgb8{255, 0, 0}));
+  EXPECT_EQ(c[3], (Rgb8{160, 160, 160}));
+  PriResult r;
+  r.pri = {0.1f, 0.4f, std::numeric_limits<float>::quiet_NaN(), 0.2f, 0.3f};
+  r.pri_views = {3, 4, 1, 2, 5};
+  r.status = {FaceStatus::Observed, FaceStatus::Observed, FaceStatus::Unobserved,
+              FaceStatus::Observed, FaceStatus::Observed};
+  r.observed = 4;
+  r.unobserved = 1;
+  const PriSummary s = summarize_pri(r, 2, 3);
+  ASSERT_EQ(s.worst.size(), 2u);
+  EXPECT_EQ(s.worst[0].face, 1);
+  EXPECT_EQ(s.worst[0].views, 4);
+  EXPECT_EQ(s.worst[1].face, 4);
+  EXPECT_NEAR(s.percentiles[3].second, 0.25, 1e-6);  // median of 0.1 0.2 0.3 0.4
+  EXPECT_EQ(s.histogram, (std::vector<std::size_t>{1, 1, 2}));
+}
