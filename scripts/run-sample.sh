@@ -10,5 +10,7 @@ cmake -S . -B "$BUILD" -G Ninja -DCMAKE_BUILD_TYPE=Release -DMESHNBV_BUILD_TESTS
 cmake --build "$BUILD" -j"$(nproc)" --target meshnbv
 OUT=${MESHNBV_OUT:-out/sample}
 mkdir -p "$OUT"
-"$BUILD/apps/meshnbv" info sample_projects/building/project.mlp --json "$OUT/info.json"
-echo "results: $OUT/info.json"
+SCENE=sample_projects/building/project.mlp
+"$BUILD/apps/meshnbv" info "$SCENE" --json "$OUT/info.json"
+"$BUILD/apps/meshnbv" pri "$SCENE" --out "$OUT/pri.ply" --json "$OUT/pri.json" --overwrite
+echo "results in $OUT/: info.json (scene summary), pri.ply (mesh coloured by PRI, face quality = PRI), pri.json (PRI summary)"
