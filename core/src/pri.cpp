@@ -84,9 +84,21 @@ double projected_area(const Vec2& a, const Vec2& b, const Vec2& c) {
   return 0.5 * std::abs((b - a).x() * (c - a).y() - (b - a).y() * (c - a).x());
 }
 
+// The centroid and the edge midpoints of face f are unoccluded from centre c.
+bool interior_unoccluded(const TriangleMesh& mesh, const RayCaster& caster, std::size_t f,
+                         const Vec3& c, const PriOptions& o, double abs_eps) {
+  const Face& face = mesh.faces[f];
+  const Vec3 &a = mesh.vertices[face[0]], &b = mesh.vertices[face[1]], &d = mesh.vertices[face[2]];
+  const Vec3 points[4] = {(a + b + d) / 3.0, 0.5 * (a + b), 0.5 * (b + d), 0.5 * (d + a)};
+  for (const Vec3& p : points)
+    if (!caster.segment_clear(c, p, o.visibility.relative_eps, abs_eps)) return false;
+  return true;
+}
+
 FaceViews select_views(const TriangleMesh& mesh, const std::vector<Vec3>& normals,
-                       const VertexVisibility& vis, const std::vector<PinholeCamera>& cams,
-                       const std::vector<Vec3>& centres, std::size_t f, const PriOptions& o) {
+                       const VertexVisibility& vis, const RayCaster& caster,
+                       const std::vector<PinholeCamera>& cams, const std::vector<Vec3>& centres,
+                       std::size_t f, const PriOptions& o, double abs_eps) {
   FaceViews out;
   struct Candidate {
     int view;
@@ -102,6 +114,8 @@ FaceViews select_views(const TriangleMesh& mesh, const std::vector<Vec3>& normal
     for (int k = 0; k < 3; ++k) cams[i].project(mesh.vertices[face[k]], &p[k]);
     const double cosine = normals[f].dot((centres[i] - centroid).normalized());
     if (cosine < min_cosine) continue;  // grazing view
+    if (o.check_interior_occlusion && !interior_unoccluded(mesh, caster, f, centres[i], o, abs_eps))
+      continue;
     const double max_edge = std::max({(p[1] - p[0]).norm(), (p[2] - p[1]).norm(), (p[0] - p[2]).norm()});
     candidates.push_back({int(i), std::acos(std::clamp(cosine, -1.0, 1.0)),
                           projected_area(p[0], p[1], p[2]), max_edge});
@@ -170,10 +184,11 @@ PriResult compute_pri(const Scene& scene, const PriOptions& options,
     const RayCaster caster(mesh);
     const VertexVisibility vis(mesh, caster, cams, options.visibility, progress);
     const std::vector<Vec3> normals = mesh.face_normals();
+    const double abs_eps = options.visibility.absolute_eps_of_diagonal * mesh.bounding_box().diagonal();
     std::vector<FaceViews> fv(F);
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, F), [&](const auto& r) {
       for (std::size_t f = r.begin(); f < r.end(); ++f)
-        fv[f] = select_views(mesh, normals, vis, cams, centres, f, options);
+        fv[f] = select_views(mesh, normals, vis, caster, cams, centres, f, options, abs_eps);
     });
 
     // Faces in blocks whose sample storage stays under ~1 GB; each block

@@ -38,6 +38,11 @@ struct PriOptions {
   // angles the patch projects to a sliver and its samples are meaningless.
   // 90 = the SPEC's plain back-face rule.
   double max_incidence_angle = 80.0;  // degrees
+  // Besides its three vertices, the face's centroid and edge midpoints
+  // must be unoccluded in a view [deviation, docs/deviations.md]: vertex
+  // visibility alone misses partial occlusion (a face behind a thin
+  // parapet, in a concave corner). False = the SPEC's vertex rule only.
+  bool check_interior_occlusion = true;
   VisibilityOptions visibility;
 
   void check() const;  // throws Error for values out of range

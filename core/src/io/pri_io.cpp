@@ -40,6 +40,7 @@ std::string pri_summary_json(const PriResult& result, const PriOptions& options,
                   {"samples_per_side", options.samples_per_side},
                   {"max_views_per_face", options.max_views_per_face},
                   {"max_incidence_angle", options.max_incidence_angle},
+                  {"check_interior_occlusion", options.check_interior_occlusion},
                   {"color", options.color},
                   {"threads", options.threads},
                   {"textureless_variance", options.textureless_variance}};

@@ -46,7 +46,7 @@ TriangleMesh load_object(const std::string& path) {
 // about 4 px, the view-dependent pixel footprint (foreshortening, distance)
 // filters the texture differently in each view and the truth itself stops
 // being photo-consistent; measured in tests/core/test_pri_quality.cpp.
-constexpr double kBandLimitPixels = 4.0;
+constexpr double kBandLimitPixels = 8.0;
 
 // Texture periods in metres suit buildings; an object of any size gets its
 // patterns scaled to its own size. The texture is band-limited (see above).
