@@ -1,6 +1,5 @@
-// Degraded reconstructions of a ground-truth mesh and the per-face error
-// against it. This is the only translation unit of the core that includes
-// CGAL (slow to compile); keep it that way.
+// Degraded reconstructions of a ground-truth mesh (OpenMesh for the
+// decimation) and the per-face error against it (SurfaceDistance).
 // OpenMesh's VectorT default constructor leaves its elements uninitialised by
 // design; GCC reports that at the std::allocator line where OpenMesh's
 // property arrays grow (a system header included before any push below), so
@@ -10,6 +9,7 @@
 #include "meshnbv/synth/degrade.h"
 
 #include <algorithm>
+#include <memory>
 #include <cctype>
 #include <cerrno>
 #include <cmath>
@@ -23,6 +23,7 @@
 #include <tbb/parallel_for.h>
 
 #include "meshnbv/error.h"
+#include "meshnbv/surface_distance.h"
 
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wall"
@@ -31,11 +32,6 @@
 #pragma GCC diagnostic ignored "-Wpedantic"
 #pragma GCC diagnostic ignored "-Wunused-parameter"
 #pragma GCC diagnostic ignored "-Wdeprecated-copy"
-#include <CGAL/AABB_traits.h>
-#include <CGAL/AABB_tree.h>
-#include <CGAL/AABB_triangle_primitive.h>
-#include <CGAL/Simple_cartesian.h>
-
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 #include <OpenMesh/Tools/Decimater/DecimaterT.hh>
 #include <OpenMesh/Tools/Decimater/ModNormalFlippingT.hh>
@@ -466,15 +462,6 @@ DegradeResult degrade(const TriangleMesh& truth, const std::vector<Degradation>&
 // ---------------------------------------------------------------------------
 // Error against the true surface
 
-namespace {
-using Kernel = CGAL::Simple_cartesian<double>;
-using Point3 = Kernel::Point_3;
-using Triangle3 = Kernel::Triangle_3;
-using TriangleIterator = std::vector<Triangle3>::const_iterator;
-using Primitive = CGAL::AABB_triangle_primitive<Kernel, TriangleIterator>;
-using AabbTree = CGAL::AABB_tree<CGAL::AABB_traits<Kernel, Primitive>>;
-}  // namespace
-
 std::vector<float> face_distance_to_surface(const TriangleMesh& mesh, const TriangleMesh& truth,
                                             int samples_per_side) {
   if (samples_per_side < 0)
@@ -484,25 +471,12 @@ std::vector<float> face_distance_to_surface(const TriangleMesh& mesh, const Tria
   truth.validate("face_distance_to_surface: ground truth");
   if (truth.faces.empty())
     throw Error("face_distance_to_surface: the ground-truth mesh has no faces");
-
-  std::vector<Triangle3> triangles;
-  triangles.reserve(truth.faces.size());
-  for (const Face& face : truth.faces) {
-    const Vec3& a = truth.vertices[face[0]];
-    const Vec3& b = truth.vertices[face[1]];
-    const Vec3& c = truth.vertices[face[2]];
-    Triangle3 t(Point3(a.x(), a.y(), a.z()), Point3(b.x(), b.y(), b.z()),
-                Point3(c.x(), c.y(), c.z()));
-    // Collinear triangles have no area (their points lie on neighbouring
-    // edges) and upset CGAL's closest-point code.
-    if (!t.is_degenerate()) triangles.push_back(t);
-  }
-  if (triangles.empty())
+  std::unique_ptr<SurfaceDistance> surface;
+  try {
+    surface = std::make_unique<SurfaceDistance>(truth);
+  } catch (const Error&) {
     throw Error("face_distance_to_surface: every ground-truth face is degenerate");
-
-  AabbTree tree(triangles.cbegin(), triangles.cend());
-  tree.build();
-  tree.accelerate_distance_queries();  // const and thread-safe from here on
+  }
 
   // Barycentric lattice: (i, j, r-i-j) / r, or the centroid when r = 0.
   const int r = samples_per_side;
@@ -526,7 +500,7 @@ std::vector<float> face_distance_to_surface(const TriangleMesh& mesh, const Tria
                         double sum = 0;
                         for (const Vec3& w : weights) {
                           const Vec3 p = w[0] * a + w[1] * b + w[2] * c;
-                          sum += std::sqrt(tree.squared_distance(Point3(p.x(), p.y(), p.z())));
+                          sum += surface->distance(p);
                         }
                         out[f] = static_cast<float>(sum / static_cast<double>(weights.size()));
                       }
