@@ -1,0 +1,84 @@
+// The next-best-view energy of Morreale, Romanoni, Matteucci, "Predicting
+// the Next Best View for 3D Mesh Refinement" (2018), as ../shared/SPEC.md
+// section 4 fixes it: for a candidate pose P and each vertex v of the worst
+// region,
+//   NBV(P, v) = mu1 O(P,v) + mu2 F(P,v) + mu3 sum_c Par(P,c,v) + mu4 I(P,v)
+// and E(P) = sum_v NBV(P, v); the next best view maximises E.
+#pragma once
+
+#include <array>
+#include <vector>
+
+#include "meshnbv/camera.h"
+#include "meshnbv/mesh.h"
+#include "meshnbv/raycaster.h"
+#include "meshnbv/visibility.h"
+
+namespace meshnbv {
+
+struct EnergyOptions {
+  // mu1..mu4: occlusion, focus, parallax, incidence.
+  std::array<double, 4> weights = {0.6, 1.6, 2.1, 0.6};
+  double penalty = -10.0;             // Kp
+  double parallax_delta = 0.33;       // B/H threshold
+  double incidence_mu = 55.0;         // degrees
+  double incidence_sigma = 15.0;      // degrees; kappa = 1 / sigma^2 (radians)
+  VisibilityOptions visibility;
+
+  void check() const;  // throws Error for non-finite or out-of-range values
+  double kappa() const;
+};
+
+// The K worst observed faces and their vertices (SPEC section 4).
+struct WorstRegion {
+  std::vector<int> faces;      // highest PRI first
+  std::vector<int> vertices;   // distinct, ascending
+  std::vector<Vec3> normals;   // per vertex: normalised mean of its worst faces' normals
+  Vec3 centroid = Vec3::Zero();     // area-weighted centroid of the faces
+  Vec3 mean_normal = Vec3::Zero();  // area-weighted mean normal, normalised
+};
+
+// `pri` per face (NaN = unobserved); faces flagged in `exclude` are skipped.
+// Throws Error when no face has a defined PRI.
+WorstRegion worst_region(const TriangleMesh& mesh, const std::vector<float>& pri, int k,
+                         const std::vector<char>* exclude = nullptr);
+
+// The four terms for one vertex, unweighted (SPEC section 4).
+double focus_term(const PinholeCamera& camera, const Vec3& vertex, double penalty);
+double incidence_term(double angle_radians, const EnergyOptions& options);
+double parallax_term(const Vec3& candidate_centre, const Vec3& existing_centre, const Vec3& vertex,
+                     const EnergyOptions& options);
+
+// Weighted contributions summed over the region's vertices; total = their sum.
+struct EnergyTerms {
+  double occlusion = 0, focus = 0, parallax = 0, incidence = 0, total = 0;
+};
+
+class EnergyEvaluator {
+ public:
+  // `existing` = the centres of the views already used (for parallax).
+  EnergyEvaluator(const TriangleMesh& mesh, const RayCaster& caster, const WorstRegion& region,
+                  std::vector<Vec3> existing, const EnergyOptions& options);
+
+  EnergyTerms evaluate(const PinholeCamera& candidate) const;
+  // Worst faces the candidate sees (three vertices visible, facing it).
+  std::vector<int> seen_faces(const PinholeCamera& candidate) const;
+  // Whether every worst vertex is visible from the candidate.
+  bool sees_all_vertices(const PinholeCamera& candidate) const;
+
+  const WorstRegion& region() const { return region_; }
+  const std::vector<Vec3>& existing() const { return existing_; }
+
+ private:
+  bool vertex_visible(const PinholeCamera& camera, const Vec3& v) const;
+
+  const TriangleMesh& mesh_;
+  const RayCaster& caster_;
+  WorstRegion region_;
+  std::vector<Vec3> existing_;
+  EnergyOptions options_;
+  double absolute_eps_;
+  double incidence_constant_;  // log(2 pi I0(kappa))
+};
+
+}  // namespace meshnbv
