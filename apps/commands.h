@@ -3,6 +3,7 @@
 #include <CLI/CLI.hpp>
 
 #include "meshnbv/io/scene_io.h"
+#include "meshnbv/planner.h"
 #include "meshnbv/pri.h"
 
 namespace meshnbv::cli {
@@ -22,6 +23,7 @@ void add_info_command(CLI::App& app);
 void add_convert_command(CLI::App& app);
 void add_synth_command(CLI::App& app);
 void add_pri_command(CLI::App& app);
+void add_suggest_command(CLI::App& app);
 // The PRI options as flags, shared by every command that computes PRI.
 void add_pri_options(CLI::App* cmd, PriOptions* options, std::string* measure);
 

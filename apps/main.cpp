@@ -16,6 +16,7 @@ int main(int argc, char** argv) {
   meshnbv::cli::add_convert_command(app);
   meshnbv::cli::add_synth_command(app);
   meshnbv::cli::add_pri_command(app);
+  meshnbv::cli::add_suggest_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

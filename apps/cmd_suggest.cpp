@@ -1,0 +1,164 @@
+// meshnbv suggest: where to take the next photos.
+#include <iostream>
+#include <memory>
+#include <sstream>
+
+#include "commands.h"
+#include "meshnbv/error.h"
+#include "meshnbv/io/file_util.h"
+#include "meshnbv/io/mesh_io.h"
+#include "meshnbv/io/suggestions_io.h"
+#include "meshnbv/planner.h"
+#include "progress_bar.h"
+
+namespace meshnbv::cli {
+namespace {
+
+std::array<double, 4> parse_weights(const std::string& text) {
+  std::array<double, 4> w{};
+  std::stringstream ss(text);
+  std::string item;
+  int n = 0;
+  while (std::getline(ss, item, ',')) {
+    if (n == 4) throw Error("--weights takes four numbers m1,m2,m3,m4, got '" + text + "'");
+    try {
+      std::size_t used = 0;
+      w[std::size_t(n)] = std::stod(item, &used);
+      if (used != item.size()) throw std::invalid_argument(item);
+    } catch (const std::exception&) {
+      throw Error("--weights: '" + item + "' is not a number (expected m1,m2,m3,m4)");
+    }
+    ++n;
+  }
+  if (n != 4) throw Error("--weights takes four numbers m1,m2,m3,m4, got '" + text + "'");
+  return w;
+}
+
+}  // namespace
+
+void add_suggest_options(CLI::App* cmd, SuggestOptions* o, std::string* mode, std::string* weights) {
+  cmd->add_option("--candidates", *mode,
+                  "given: views without image / marked unused / --candidates-from; sampled: "
+                  "hemisphere around the worst region; refined: sampled, then optimised")
+      ->check(CLI::IsMember({"given", "sampled", "refined"}))
+      ->capture_default_str();
+  cmd->add_option("--top", o->top, "Number of suggestions (greedy batch)")->capture_default_str();
+  cmd->add_option("--worst", o->worst_k, "Faces in the worst set")->capture_default_str();
+  cmd->add_option("--weights", *weights, "Energy weights m1,m2,m3,m4 (occlusion, focus, parallax, incidence)")
+      ->capture_default_str();
+  cmd->add_option("--penalty", o->energy.penalty, "Kp, the penalty value")->capture_default_str();
+  cmd->add_option("--parallax-delta", o->energy.parallax_delta, "B/H threshold")->capture_default_str();
+  cmd->add_option("--incidence-mu", o->energy.incidence_mu, "Preferred incidence angle (degrees)")
+      ->capture_default_str();
+  cmd->add_option("--incidence-sigma", o->energy.incidence_sigma, "Incidence spread (degrees); kappa = 1/sigma^2")
+      ->capture_default_str();
+  cmd->add_option("--directions", o->sampling.directions, "Sampled directions on the hemisphere")
+      ->capture_default_str();
+  cmd->add_option("--safety-distance", o->safety_distance,
+                  "Minimum distance to the surface, as a share of the bounding-box diagonal")
+      ->capture_default_str();
+  cmd->add_option("--refine-best", o->refine_best, "Refined mode: candidates refined per pick")
+      ->capture_default_str();
+  cmd->add_option("--refine-iterations", o->refine.iterations, "Refined mode: optimiser iterations")
+      ->capture_default_str();
+  cmd->add_option("--seed", o->sampling.seed, "Seed of the sampling")->capture_default_str();
+}
+
+void add_suggest_command(CLI::App& app) {
+  struct Args {
+    SceneInput input;
+    PriOptions pri;
+    SuggestOptions suggest;
+    std::string measure = "ssd", mode = "sampled", weights = "0.6,1.6,2.1,0.6";
+    std::string pri_file, candidates_from, out, mlp, frustums, colmap;
+    bool overwrite = false, quiet = false;
+  };
+  auto a = std::make_shared<Args>();
+  CLI::App* cmd = app.add_subcommand(
+      "suggest", "Suggest the next views: score candidate poses with the next-best-view energy "
+                 "over the worst faces (Morreale, Romanoni, Matteucci 2018)");
+  a->input.add_to(cmd);
+  cmd->add_option("--pri", a->pri_file, "Mesh with per-face quality = PRI (from meshnbv pri); "
+                                        "otherwise PRI is computed");
+  add_pri_options(cmd, &a->pri, &a->measure);
+  add_suggest_options(cmd, &a->suggest, &a->mode, &a->weights);
+  cmd->add_option("--candidates-from", a->candidates_from,
+                  "Scene whose views are the candidates (given mode)");
+  cmd->add_option("--out", a->out, "Suggestions as JSON")->required();
+  cmd->add_option("--mlp", a->mlp, "The scene as a MeshLab project with one raster per suggestion");
+  cmd->add_option("--frustums", a->frustums, "Frustum mesh of the suggestions (PLY, coloured by rank)");
+  cmd->add_option("--colmap", a->colmap, "Folder for a COLMAP text model of the suggestions");
+  cmd->add_flag("--overwrite", a->overwrite, "Replace existing output files");
+  cmd->add_flag("--quiet", a->quiet, "No progress output");
+  cmd->callback([a]() {
+    SuggestOptions& o = a->suggest;
+    o.mode = parse_candidate_mode(a->mode);
+    o.energy.weights = parse_weights(a->weights);
+    o.threads = a->pri.threads;
+    o.check();
+    a->pri.measure = parse_measure(a->measure);
+    for (const std::string* p : {&a->out, &a->mlp, &a->frustums})
+      if (!p->empty()) io::check_can_write(*p, a->overwrite);
+    Scene scene = a->input.read();
+    ProgressBar bar(a->quiet);
+    std::vector<float> pri;
+    std::string pri_from;
+    if (!a->pri_file.empty()) {
+      TriangleMesh with_pri = io::read_mesh(a->pri_file);
+      const auto* q = with_pri.face_attribute("quality");
+      if (!q) throw Error("no per-face 'quality' in the PRI mesh (write it with meshnbv pri)", a->pri_file);
+      if (!scene.mesh.empty() && scene.mesh.num_faces() != with_pri.num_faces())
+        throw Error("the PRI mesh has " + std::to_string(with_pri.num_faces()) +
+                        " faces, the scene's mesh " + std::to_string(scene.mesh.num_faces()),
+                    a->pri_file);
+      pri = *q;
+      scene.mesh = std::move(with_pri);
+      scene.mesh_path = a->pri_file;
+      pri_from = a->pri_file;
+    } else {
+      pri = compute_pri(scene, a->pri, bar.callback()).pri;
+      pri_from = "computed (" + a->measure + ")";
+    }
+    std::vector<View> given;
+    if (!a->candidates_from.empty()) {
+      if (o.mode != CandidateMode::Given)
+        throw Error("--candidates-from needs --candidates given");
+      io::SceneReadOptions ro;
+      given = io::read_scene(a->candidates_from, ro).views;
+    }
+    const SuggestResult r = suggest_views(scene, pri, o, given, bar.callback());
+    bar.finish();
+    io::write_atomically(a->out, [&](std::ostream& out) {
+      out << io::suggestions_json(r, o, {a->input.path, pri_from});
+    }, a->overwrite);
+    for (const auto& s : r.suggestions) {
+      const Vec3 c = s.camera.center();
+      std::cout << s.label << "  energy " << s.energy.total << "  (occlusion " << s.energy.occlusion
+                << ", focus " << s.energy.focus << ", parallax " << s.energy.parallax
+                << ", incidence " << s.energy.incidence << ")  centre (" << c.x() << ", " << c.y()
+                << ", " << c.z() << ")  sees " << s.seen_faces.size() << "/"
+                << r.regions[std::size_t(s.region)].faces.size() << " worst faces  [" << s.source << "]\n";
+    }
+    std::cout << r.candidates_evaluated << " candidate evaluations";
+    if (r.candidates_generated)
+      std::cout << " (" << r.candidates_generated << " sampled, " << r.rejected_inside
+                << " rejected inside the mesh, " << r.rejected_too_close << " too close)";
+    std::cout << ", " << r.seconds << " s\nsuggestions: " << a->out << "\n";
+    if (!a->mlp.empty()) {
+      io::write_suggestions_mlp(scene, r, a->mlp, a->overwrite);
+      std::cout << "MeshLab project: " << a->mlp << "\n";
+    }
+    if (!a->frustums.empty()) {
+      io::PlyWriteOptions ply;
+      ply.overwrite = a->overwrite;
+      io::write_ply(io::frustum_mesh(r), a->frustums, ply);
+      std::cout << "frustums: " << a->frustums << "\n";
+    }
+    if (!a->colmap.empty()) {
+      io::write_suggestions_colmap(r, a->colmap, a->overwrite);
+      std::cout << "COLMAP model: " << a->colmap << "\n";
+    }
+  });
+}
+
+}  // namespace meshnbv::cli
