@@ -5,16 +5,20 @@
 #include <filesystem>
 #include <string>
 
+#include <unistd.h>
+
 #include <gtest/gtest.h>
 
 namespace meshnbv::test {
 
 inline std::string data_dir() { return MESHNBV_TEST_DATA_DIR; }
 
-// A fresh, empty folder for one test.
+// A fresh, empty folder for one test; per process, because ctest runs the
+// tests of one executable as parallel processes.
 inline std::string temp_dir(const std::string& name) {
   const char* root = std::getenv("MESHNBV_TMP");
-  std::filesystem::path dir = std::filesystem::path(root ? root : "/tmp/meshnbv_tests") / name;
+  std::filesystem::path dir = std::filesystem::path(root ? root : "/tmp/meshnbv_tests") /
+                              (name + "." + std::to_string(::getpid()));
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   return dir.string();
