@@ -12,8 +12,6 @@
 #include "progress_bar.h"
 
 namespace meshnbv::cli {
-namespace {
-
 std::array<double, 4> parse_weights(const std::string& text) {
   std::array<double, 4> w{};
   std::stringstream ss(text);
@@ -33,8 +31,6 @@ std::array<double, 4> parse_weights(const std::string& text) {
   if (n != 4) throw Error("--weights takes four numbers m1,m2,m3,m4, got '" + text + "'");
   return w;
 }
-
-}  // namespace
 
 void add_suggest_options(CLI::App* cmd, SuggestOptions* o, std::string* mode, std::string* weights) {
   cmd->add_option("--candidates", *mode,

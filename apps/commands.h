@@ -24,6 +24,11 @@ void add_convert_command(CLI::App& app);
 void add_synth_command(CLI::App& app);
 void add_pri_command(CLI::App& app);
 void add_suggest_command(CLI::App& app);
+void add_run_command(CLI::App& app);
+// The next-view options as flags, shared by suggest and run.
+void add_suggest_options(CLI::App* cmd, SuggestOptions* options, std::string* mode, std::string* weights);
+// "m1,m2,m3,m4" -> four numbers; throws Error otherwise.
+std::array<double, 4> parse_weights(const std::string& text);
 // The PRI options as flags, shared by every command that computes PRI.
 void add_pri_options(CLI::App* cmd, PriOptions* options, std::string* measure);
 

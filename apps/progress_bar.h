@@ -1,5 +1,7 @@
-// Terminal progress for long steps: a bar on a terminal, silent otherwise
-// or with --quiet.
+// Progress of long steps: a bar with ETA on a terminal (stderr), nothing
+// when stderr is not a terminal or with --quiet, and one JSON object per
+// line on stderr with --json ({"stage", "fraction", "elapsed", "eta"}) for
+// tools that wrap the CLI.
 #pragma once
 
 #include <chrono>
@@ -11,13 +13,14 @@ namespace meshnbv::cli {
 
 class ProgressBar {
  public:
-  explicit ProgressBar(bool quiet);
+  explicit ProgressBar(bool quiet, bool json = false);
   ProgressCallback callback();
   void finish();
 
  private:
   void draw(double fraction, const std::string& stage);
   bool enabled_;
+  bool json_;
   std::string stage_;
   int last_percent_ = -1;
   std::chrono::steady_clock::time_point stage_start_;

@@ -12,6 +12,12 @@ PACKAGES=(
   nlohmann-json3-dev libpugixml-dev libcli11-dev libtinyobjloader-dev
   # tests and benchmarks
   libgtest-dev libgmock-dev libbenchmark-dev python3
+  # VTK pipeline algorithms (filters/), Python-wrapped, rendered under Xvfb
+  libvtk9-dev python3-vtk9 vtk9 python3-numpy xvfb xauth
+  # MeshLab 2020.09 plugin (plugins/meshlab/): MeshLab itself, Qt and GL to
+  # build against, dpkg-dev for `apt-get source` of MeshLab's headers
+  meshlab qtbase5-dev libqt5opengl5-dev libqt5xmlpatterns5-dev qtscript5-dev
+  libglew-dev libgl-dev libglu1-mesa-dev dpkg-dev
 )
 
 missing=()

@@ -12,14 +12,8 @@ OUT=${MESHNBV_OUT:-out/sample}
 mkdir -p "$OUT"
 SCENE=sample_projects/building/project.mlp
 "$BUILD/apps/meshnbv" info "$SCENE" --json "$OUT/info.json"
-"$BUILD/apps/meshnbv" pri "$SCENE" --out "$OUT/pri.ply" --json "$OUT/pri.json" --overwrite --quiet
-"$BUILD/apps/meshnbv" suggest "$SCENE" --pri "$OUT/pri.ply" --top 3 --out "$OUT/suggestions.json" \
-  --mlp "$OUT/suggestions.mlp" --frustums "$OUT/frustums.ply" --colmap "$OUT/colmap" --overwrite --quiet
 echo
-echo "results in $OUT/:"
-echo "  info.json          scene summary"
-echo "  pri.ply, pri.json  mesh coloured by PRI (face quality = PRI) and its summary"
-echo "  suggestions.json   the 3 suggested next views with every energy term"
-echo "  suggestions.mlp    open in MeshLab: the scene with rasters nbv_1..nbv_3"
-echo "  frustums.ply       the suggested camera frustums (red = best)"
-echo "  colmap/            the suggestions as a COLMAP text model"
+"$BUILD/apps/meshnbv" run "$SCENE" --out "$OUT" --top 3 --overwrite
+echo
+echo "results in $OUT/: report.html (open it in a browser), pri.ply + pri.json (mesh coloured by PRI,"
+echo "face quality = PRI), suggestions.json, suggestions.mlp (open in MeshLab), frustums.ply, info.json"

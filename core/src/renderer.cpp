@@ -12,7 +12,7 @@ namespace meshnbv {
 namespace {
 
 Vec3 background_colour(const RenderInputs& in, const RenderOptions& o, const Vec3& direction) {
-  if (!o.textured_background) return o.background;
+  if (!o.textured_background || !in.texture) return o.background;
   const double v = in.texture->fractal_noise(direction * 8.0, 1.0);
   return (o.background * (0.85 + 0.3 * v)).cwiseMin(1.0);
 }
@@ -29,8 +29,12 @@ Vec3 trace(const RenderInputs& in, const RenderOptions& o, const Vec3& light, co
                  hit.v * mesh.vertices[f[2]];
   Vec3 n = mesh.face_normal(hit.face);
   if (n.dot(ray.direction) > 0) n = -n;  // two-sided
-  const int material = in.materials ? int((*in.materials)[hit.face]) : 0;
   const double shade = o.ambient + o.diffuse * std::max(0.0, n.dot(light));
+  if (in.face_colors) {
+    const Rgb8& c = (*in.face_colors)[std::size_t(hit.face)];
+    return Vec3(c[0], c[1], c[2]) / 255.0 * shade;
+  }
+  const int material = in.materials ? int((*in.materials)[hit.face]) : 0;
   return in.texture->albedo(p, n, material) * shade;
 }
 
@@ -38,7 +42,10 @@ Vec3 trace(const RenderInputs& in, const RenderOptions& o, const Vec3& light, co
 
 Image render(const RenderInputs& in, const PinholeCamera& camera, const RenderOptions& o,
              std::vector<float>* depth, const ProgressCallback& progress) {
-  if (!in.mesh || !in.raycaster || !in.texture) throw Error("render: missing mesh, ray caster or texture");
+  if (!in.mesh || !in.raycaster || !(in.texture || in.face_colors))
+    throw Error("render: missing mesh, ray caster, or texture/face colours");
+  if (in.face_colors && in.face_colors->size() != in.mesh->num_faces())
+    throw Error("render: face colours do not match the face count");
   if (in.materials && in.materials->size() != in.mesh->num_faces())
     throw Error("render: material ids do not match the face count");
   camera.check("render camera");

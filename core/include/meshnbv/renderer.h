@@ -28,6 +28,9 @@ struct RenderInputs {
   const SolidTexture* texture = nullptr;
   // Per-face material ids (face attribute "material"); nullptr = all 0.
   const std::vector<float>* materials = nullptr;
+  // Per-face colours used as albedo instead of the texture (quality maps);
+  // then `texture` may be null.
+  const std::vector<Rgb8>* face_colors = nullptr;
 };
 
 // Renders the RGB image seen by `camera`. When `depth` is given it receives

@@ -121,7 +121,7 @@ TriangleMesh frustum_mesh(const SuggestResult& result, double depth) {
   for (std::size_t i = 0; i < n; ++i) {
     const Suggestion& s = result.suggestions[i];
     const Vec3 c = s.camera.center();
-    const double d = depth > 0 ? depth : 0.3 * std::max(1e-9, s.camera.depth(s.look_at));
+    const double d = depth > 0 ? depth : 0.2 * std::max(1e-9, s.camera.depth(s.look_at));
     const auto corners = s.camera.frustum_corners(d);
     const int base = int(m.vertices.size());
     m.vertices.push_back(c);

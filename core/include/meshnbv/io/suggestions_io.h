@@ -24,7 +24,7 @@ void write_suggestions_mlp(const Scene& scene, const SuggestResult& result, cons
                            bool overwrite);
 
 // One pyramid per suggestion (apex at the camera centre, base = the image
-// corners at `depth`; depth 0 = 30% of the distance to the look-at point),
+// corners at `depth`; depth 0 = 20% of the distance to the look-at point),
 // faces coloured by rank from red (1) to yellow (last).
 TriangleMesh frustum_mesh(const SuggestResult& result, double depth = 0.0);
 

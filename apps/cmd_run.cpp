@@ -1,0 +1,107 @@
+// meshnbv run: the main job. PRI, next-view suggestions and a visual report
+// in one folder.
+#include <chrono>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <sstream>
+
+#include "commands.h"
+#include "meshnbv/error.h"
+#include "meshnbv/io/file_util.h"
+#include "meshnbv/io/mesh_io.h"
+#include "meshnbv/io/pri_io.h"
+#include "meshnbv/io/suggestions_io.h"
+#include "meshnbv/report.h"
+#include "progress_bar.h"
+
+namespace fs = std::filesystem;
+
+namespace meshnbv::cli {
+
+void add_run_command(CLI::App& app) {
+  struct Args {
+    SceneInput input;
+    PriOptions pri;
+    SuggestOptions suggest;
+    std::string measure = "ssd", mode = "sampled", weights = "0.6,1.6,2.1,0.6", out;
+    bool overwrite = false, quiet = false, json = false;
+  };
+  auto a = std::make_shared<Args>();
+  a->suggest.top = 3;
+  CLI::App* cmd = app.add_subcommand(
+      "run", "The main job: PRI, next-view suggestions and a visual report (report.html) in one folder");
+  a->input.add_to(cmd);
+  add_pri_options(cmd, &a->pri, &a->measure);
+  add_suggest_options(cmd, &a->suggest, &a->mode, &a->weights);
+  cmd->add_option("--out", a->out, "Output folder")->required();
+  cmd->add_flag("--overwrite", a->overwrite, "Write into a folder that already holds results");
+  cmd->add_flag("--quiet", a->quiet, "No progress output");
+  cmd->add_flag("--json", a->json, "Progress as JSON lines on stderr");
+  cmd->callback([a]() {
+    using clock = std::chrono::steady_clock;
+    const fs::path out(a->out);
+    const fs::path report = out / "report.html";
+    std::error_code ec;
+    if (fs::exists(report, ec) && !a->overwrite)
+      throw Error("output folder already holds a report; pass --overwrite to replace it", a->out);
+    SuggestOptions& so = a->suggest;
+    so.mode = parse_candidate_mode(a->mode);
+    so.energy.weights = parse_weights(a->weights);
+    so.threads = a->pri.threads;
+    so.check();
+    a->pri.measure = parse_measure(a->measure);
+    a->pri.check();
+    std::vector<std::pair<std::string, double>> timings;
+    auto t0 = clock::now();
+    auto lap = [&](const std::string& step) {
+      const auto t1 = clock::now();
+      timings.emplace_back(step, std::chrono::duration<double>(t1 - t0).count());
+      t0 = t1;
+    };
+    const Scene scene = a->input.read();
+    lap("read scene");
+    ProgressBar bar(a->quiet, a->json);
+    const PriResult pri = compute_pri(scene, a->pri, bar.callback());
+    lap("PRI");
+    const SuggestResult sug = suggest_views(scene, pri.pri, so, {}, bar.callback());
+    lap("suggestions");
+
+    fs::create_directories(out);
+    io::PlyWriteOptions ply;
+    ply.overwrite = true;
+    io::write_ply(io::mesh_with_pri(scene.mesh, pri), (out / "pri.ply").string(), ply);
+    io::write_atomically((out / "pri.json").string(),
+                         [&](std::ostream& o) { o << io::pri_summary_json(pri, a->pri); });
+    io::write_atomically((out / "suggestions.json").string(), [&](std::ostream& o) {
+      o << io::suggestions_json(sug, so, {a->input.path, "computed (" + a->measure + ")"});
+    });
+    io::write_suggestions_mlp(scene, sug, (out / "suggestions.mlp").string(), true);
+    io::write_ply(io::frustum_mesh(sug), (out / "frustums.ply").string(), ply);
+    lap("write results");
+
+    ReportInputs r;
+    r.scene = &scene;
+    r.pri = &pri;
+    r.pri_options = a->pri;
+    r.suggestions = &sug;
+    r.suggest_options = so;
+    r.scene_path = a->input.path;
+    r.timings = timings;
+    r.files = {{"pri.ply", "mesh with face quality = PRI and PRI colours"},
+               {"pri.json", "PRI summary"},
+               {"suggestions.json", "the suggested views with every energy term"},
+               {"suggestions.mlp", "MeshLab project with rasters nbv_1, nbv_2, ..."},
+               {"frustums.ply", "frustums of the suggestions, red = best"}};
+    const ReportFiles files = write_report(r, out.string(), bar.callback());
+    bar.finish();
+    std::cout << scene.mesh.num_faces() << " faces: " << pri.observed << " observed, " << pri.unobserved
+              << " unobserved; " << sug.suggestions.size() << " suggestions\n";
+    for (const auto& s : sug.suggestions)
+      std::cout << "  " << s.label << "  energy " << s.energy.total << "  sees " << s.seen_faces.size()
+                << " worst faces\n";
+    std::cout << "report: " << files.html << "\n";
+  });
+}
+
+}  // namespace meshnbv::cli
