@@ -46,12 +46,7 @@ void add_run_command(CLI::App& app) {
     if (fs::exists(report, ec) && !a->overwrite)
       throw Error("output folder already holds a report; pass --overwrite to replace it", a->out);
     SuggestOptions& so = a->suggest;
-    so.mode = parse_candidate_mode(a->mode);
-    so.energy.weights = parse_weights(a->weights);
-    so.threads = a->pri.threads;
-    so.check();
-    a->pri.measure = parse_measure(a->measure);
-    a->pri.check();
+    finish_options(&a->pri, a->measure, &so, a->mode, a->weights);
     std::vector<std::pair<std::string, double>> timings;
     auto t0 = clock::now();
     auto lap = [&](const std::string& step) {

@@ -32,6 +32,16 @@ std::array<double, 4> parse_weights(const std::string& text) {
   return w;
 }
 
+void finish_options(PriOptions* pri, const std::string& measure, SuggestOptions* suggest,
+                    const std::string& mode, const std::string& weights) {
+  pri->measure = parse_measure(measure);
+  pri->check();
+  suggest->mode = parse_candidate_mode(mode);
+  suggest->energy.weights = parse_weights(weights);
+  suggest->threads = pri->threads;
+  suggest->check();
+}
+
 void add_suggest_options(CLI::App* cmd, SuggestOptions* o, std::string* mode, std::string* weights) {
   cmd->add_option("--candidates", *mode,
                   "given: views without image / marked unused / --candidates-from; sampled: "
@@ -88,11 +98,7 @@ void add_suggest_command(CLI::App& app) {
   cmd->add_flag("--quiet", a->quiet, "No progress output");
   cmd->callback([a]() {
     SuggestOptions& o = a->suggest;
-    o.mode = parse_candidate_mode(a->mode);
-    o.energy.weights = parse_weights(a->weights);
-    o.threads = a->pri.threads;
-    o.check();
-    a->pri.measure = parse_measure(a->measure);
+    finish_options(&a->pri, a->measure, &o, a->mode, a->weights);
     for (const std::string* p : {&a->out, &a->mlp, &a->frustums})
       if (!p->empty()) io::check_can_write(*p, a->overwrite);
     Scene scene = a->input.read();

@@ -29,6 +29,10 @@ void add_run_command(CLI::App& app);
 void add_suggest_options(CLI::App* cmd, SuggestOptions* options, std::string* mode, std::string* weights);
 // "m1,m2,m3,m4" -> four numbers; throws Error otherwise.
 std::array<double, 4> parse_weights(const std::string& text);
+// Applies the options given as text (measure, candidate mode, weights),
+// shares the thread count, and checks both option sets.
+void finish_options(PriOptions* pri, const std::string& measure, SuggestOptions* suggest,
+                    const std::string& mode, const std::string& weights);
 // The PRI options as flags, shared by every command that computes PRI.
 void add_pri_options(CLI::App* cmd, PriOptions* options, std::string* measure);
 
