@@ -9,7 +9,7 @@ std::vector<Material> default_materials() {
   return {
       {Pattern::Noise, Vec3(0.78, 0.74, 0.66), Vec3(0.5, 0.48, 0.44), 1.5, 0.35},   // plaster
       {Pattern::Bricks, Vec3(0.66, 0.33, 0.24), Vec3(0.82, 0.8, 0.74), 1.0, 0.3},  // bricks
-      {Pattern::Windows, Vec3(0.85, 0.8, 0.68), Vec3(0.18, 0.24, 0.32), 3.0, 0.3},  // facade
+      {Pattern::Windows, Vec3(0.8, 0.75, 0.64), Vec3(0.32, 0.38, 0.46), 3.0, 0.35},  // facade
       {Pattern::Stripes, Vec3(0.72, 0.7, 0.62), Vec3(0.52, 0.5, 0.46), 1.5, 0.35},  // stone
       {Pattern::Tiles, Vec3(0.62, 0.28, 0.2), Vec3(0.36, 0.16, 0.12), 0.4, 0.3},    // roof
       {Pattern::Tiles, Vec3(0.55, 0.56, 0.5), Vec3(0.3, 0.3, 0.27), 1.2, 0.45},    // paved ground
@@ -95,7 +95,11 @@ Vec3 SolidTexture::albedo(const Vec3& p, const Vec3& n, int material) const {
   // textureless.
   const double grain = fractal_noise(p, std::max(0.12 * m.scale, 2.0 * min_period_));
   const double coarse = fractal_noise(p, m.scale);
-  const double variation = 1.0 - m.noise + 2.0 * m.noise * (0.6 * coarse + 0.4 * grain);
+  // Averaged octaves of value noise cluster around 0.5 (std about 0.1):
+  // stretch them so every surface carries visible texture, as a
+  // photogrammetry subject must.
+  const double mix = std::clamp(0.5 + 4.0 * (0.6 * coarse + 0.4 * grain - 0.5), 0.0, 1.0);
+  const double variation = 1.0 - m.noise + 2.0 * m.noise * mix;
   double s, t;
   plane_coords(p, n, &s, &t);
   // Pattern edges are smoothed over `soft` metres (half the band limit) so
@@ -138,7 +142,7 @@ Vec3 SolidTexture::albedo(const Vec3& p, const Vec3& n, int material) const {
       const double frame = ramp(inside(0.27, 0.73, 0.27, 0.78));
       const Vec3 pane = m.accent * (0.7 + 0.6 * hash01(seed_, (long long)std::floor(s / m.scale),
                                                        (long long)std::floor(t / m.scale)));
-      const Vec3 white(0.92, 0.92, 0.9);
+      const Vec3 white(0.86, 0.86, 0.84);
       colour = (1 - frame) * m.base + frame * ((1 - glass) * white + glass * pane);
       break;
     }

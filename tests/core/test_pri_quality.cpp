@@ -128,10 +128,10 @@ TEST_P(PriFindsDegradation, AucAndSpearman) {
 
 INSTANTIATE_TEST_SUITE_P(Synthetic, PriFindsDegradation,
                          ::testing::Values(
-                             std::make_tuple("building", "noise:0.01:0.3", Floors{0.65, 0.85, 0.2, 0.35}),
-                             std::make_tuple("building", "dent:0.03:0.2", Floors{0.85, 0.95, 0.25, 0.35}),
-                             std::make_tuple("fortress", "noise:0.01:0.3", Floors{0.7, 0.75, 0.3, 0.4}),
-                             std::make_tuple("fortress", "bump:0.02:0.2", Floors{0.85, 0.9, 0.1, 0.2})));
+                             std::make_tuple("building", "noise:0.01:0.3", Floors{0.72, 0.88, 0.3, 0.4}),
+                             std::make_tuple("building", "dent:0.03:0.2", Floors{0.9, 0.97, 0.33, 0.38}),
+                             std::make_tuple("fortress", "noise:0.01:0.3", Floors{0.8, 0.83, 0.38, 0.43}),
+                             std::make_tuple("fortress", "bump:0.02:0.2", Floors{0.92, 0.95, 0.15, 0.24})));
 
 TEST(PriQuality, TruthIsNearZero) {
   synth::SynthProject p = project("building", "dent:0.03:0.2");
