@@ -1,0 +1,355 @@
+#include "vtkMeshNBVConversion.h"
+
+#include "vtkCellArray.h"
+#include "vtkCellArrayIterator.h"
+#include "vtkCellData.h"
+#include "vtkCompositeDataSet.h"
+#include "vtkDataObjectTree.h"
+#include "vtkDataObjectTreeIterator.h"
+#include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
+#include "vtkFloatArray.h"
+#include "vtkImageData.h"
+#include "vtkInformation.h"
+#include "vtkIntArray.h"
+#include "vtkNew.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkStringArray.h"
+#include "vtkUnsignedCharArray.h"
+
+#include "meshnbv/error.h"
+
+#include <algorithm>
+#include <cstring>
+
+namespace vtkMeshNBV
+{
+namespace
+{
+
+using meshnbv::Error;
+
+void AddString(vtkFieldData* fd, const char* name, const std::string& value)
+{
+  vtkNew<vtkStringArray> a;
+  a->SetName(name);
+  a->InsertNextValue(value);
+  fd->AddArray(a);
+}
+
+void AddDoubles(vtkFieldData* fd, const char* name, const double* values, int n)
+{
+  vtkNew<vtkDoubleArray> a;
+  a->SetName(name);
+  a->SetNumberOfComponents(n);
+  a->InsertNextTuple(values);
+  fd->AddArray(a);
+}
+
+void AddInts(vtkFieldData* fd, const char* name, const int* values, int n)
+{
+  vtkNew<vtkIntArray> a;
+  a->SetName(name);
+  a->SetNumberOfComponents(n);
+  a->SetNumberOfTuples(1);
+  for (int i = 0; i < n; ++i)
+  {
+    a->SetTypedComponent(0, i, values[i]);
+  }
+  fd->AddArray(a);
+}
+
+// The first tuple of a numeric field array with `n` components, or false.
+bool GetTuple(vtkFieldData* fd, const char* name, int n, double* out)
+{
+  vtkDataArray* a = fd ? fd->GetArray(name) : nullptr;
+  if (!a || a->GetNumberOfComponents() != n || a->GetNumberOfTuples() < 1)
+  {
+    return false;
+  }
+  a->GetTuple(0, out);
+  return true;
+}
+
+std::string GetString(vtkFieldData* fd, const char* name)
+{
+  auto* a = fd ? vtkStringArray::SafeDownCast(fd->GetAbstractArray(name)) : nullptr;
+  return a && a->GetNumberOfValues() > 0 ? a->GetValue(0) : std::string();
+}
+
+// The pixel array of a block: its point scalars, else an array "Pixels".
+vtkDataArray* PixelArray(vtkImageData* image)
+{
+  vtkDataArray* a = image->GetPointData()->GetScalars();
+  if (!a)
+  {
+    a = image->GetPointData()->GetArray(PixelsName);
+  }
+  return a && a->GetNumberOfTuples() > 0 ? a : nullptr;
+}
+
+} // namespace
+
+meshnbv::TriangleMesh ToTriangleMesh(vtkPolyData* polydata)
+{
+  if (!polydata)
+  {
+    throw Error("no mesh input");
+  }
+  if (polydata->GetNumberOfVerts() || polydata->GetNumberOfLines() || polydata->GetNumberOfStrips())
+  {
+    throw Error("the mesh must consist of triangles only; it has " +
+      std::to_string(polydata->GetNumberOfVerts()) + " vertex cells, " +
+      std::to_string(polydata->GetNumberOfLines()) + " lines and " +
+      std::to_string(polydata->GetNumberOfStrips()) + " strips (run vtkTriangleFilter first)");
+  }
+  meshnbv::TriangleMesh mesh;
+  const vtkIdType np = polydata->GetNumberOfPoints();
+  mesh.vertices.resize(static_cast<std::size_t>(np));
+  for (vtkIdType i = 0; i < np; ++i)
+  {
+    polydata->GetPoint(i, mesh.vertices[static_cast<std::size_t>(i)].data());
+  }
+  vtkCellArray* polys = polydata->GetPolys();
+  if (!polys)
+  {
+    return mesh;
+  }
+  mesh.faces.reserve(static_cast<std::size_t>(polys->GetNumberOfCells()));
+  auto it = vtk::TakeSmartPointer(polys->NewIterator());
+  for (it->GoToFirstCell(); !it->IsDoneWithTraversal(); it->GoToNextCell())
+  {
+    vtkIdType n;
+    const vtkIdType* ids;
+    it->GetCurrentCell(n, ids);
+    if (n != 3)
+    {
+      throw Error("cell " + std::to_string(it->GetCurrentCellId()) + " has " + std::to_string(n) +
+        " points: the mesh must consist of triangles (run vtkTriangleFilter first)");
+    }
+    mesh.faces.push_back({ static_cast<int>(ids[0]), static_cast<int>(ids[1]), static_cast<int>(ids[2]) });
+  }
+  return mesh;
+}
+
+vtkSmartPointer<vtkPolyData> ToPolyData(const meshnbv::TriangleMesh& mesh)
+{
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  points->SetNumberOfPoints(static_cast<vtkIdType>(mesh.vertices.size()));
+  for (std::size_t i = 0; i < mesh.vertices.size(); ++i)
+  {
+    points->SetPoint(static_cast<vtkIdType>(i), mesh.vertices[i].data());
+  }
+  vtkNew<vtkCellArray> polys;
+  polys->AllocateExact(static_cast<vtkIdType>(mesh.faces.size()), 3 * static_cast<vtkIdType>(mesh.faces.size()));
+  for (const meshnbv::Face& f : mesh.faces)
+  {
+    const vtkIdType ids[3] = { f[0], f[1], f[2] };
+    polys->InsertNextCell(3, ids);
+  }
+  auto out = vtkSmartPointer<vtkPolyData>::New();
+  out->SetPoints(points);
+  out->SetPolys(polys);
+  for (const auto& [name, values] : mesh.face_attributes)
+  {
+    vtkNew<vtkFloatArray> a;
+    a->SetName(name.c_str());
+    a->SetNumberOfTuples(static_cast<vtkIdType>(values.size()));
+    std::copy(values.begin(), values.end(), a->GetPointer(0));
+    out->GetCellData()->AddArray(a);
+  }
+  if (!mesh.face_colors.empty())
+  {
+    vtkNew<vtkUnsignedCharArray> rgb;
+    rgb->SetName("RGB");
+    rgb->SetNumberOfComponents(3);
+    rgb->SetNumberOfTuples(static_cast<vtkIdType>(mesh.face_colors.size()));
+    for (std::size_t i = 0; i < mesh.face_colors.size(); ++i)
+    {
+      for (int c = 0; c < 3; ++c)
+      {
+        rgb->SetTypedComponent(static_cast<vtkIdType>(i), c, mesh.face_colors[i][static_cast<std::size_t>(c)]);
+      }
+    }
+    out->GetCellData()->AddArray(rgb);
+  }
+  return out;
+}
+
+vtkSmartPointer<vtkImageData> ToViewBlock(const meshnbv::View& view, const meshnbv::Image* pixels)
+{
+  const meshnbv::PinholeCamera& c = view.camera;
+  auto block = vtkSmartPointer<vtkImageData>::New();
+  block->SetDimensions(c.width, c.height, 1);
+  vtkFieldData* fd = block->GetFieldData();
+  AddString(fd, LabelName, view.label);
+  const int size[2] = { c.width, c.height };
+  AddInts(fd, ImageSizeName, size, 2);
+  const double k[9] = { c.fx, 0, c.cx, 0, c.fy, c.cy, 0, 0, 1 };
+  AddDoubles(fd, KName, k, 9);
+  double r[9];
+  for (int i = 0; i < 9; ++i)
+  {
+    r[i] = c.R(i / 3, i % 3);
+  }
+  AddDoubles(fd, RName, r, 9);
+  AddDoubles(fd, TName, c.t.data(), 3);
+  const double distortion[2] = { c.k1, c.k2 };
+  AddDoubles(fd, DistortionName, distortion, 2);
+  const int used = view.used ? 1 : 0;
+  AddInts(fd, UsedName, &used, 1);
+  AddString(fd, ImagePathName, view.image_path);
+  if (pixels && !pixels->empty())
+  {
+    const int w = pixels->width(), h = pixels->height(), ch = pixels->channels();
+    block->SetDimensions(w, h, 1);
+    vtkNew<vtkUnsignedCharArray> a;
+    a->SetName(PixelsName);
+    a->SetNumberOfComponents(ch);
+    a->SetNumberOfTuples(static_cast<vtkIdType>(w) * h);
+    const std::size_t row = static_cast<std::size_t>(w) * ch;
+    for (int y = 0; y < h; ++y)
+    {
+      std::memcpy(a->GetPointer(static_cast<vtkIdType>(h - 1 - y) * w * ch), pixels->pixel(0, y), row);
+    }
+    block->GetPointData()->SetScalars(a);
+  }
+  return block;
+}
+
+std::vector<ViewBlock> ExtractViews(vtkDataObject* views)
+{
+  auto* tree = vtkDataObjectTree::SafeDownCast(views);
+  if (!tree)
+  {
+    throw Error(std::string("the views input must be a vtkMultiBlockDataSet of vtkImageData (one "
+                            "block per view), got ") +
+      (views ? views->GetClassName() : "nothing"));
+  }
+  std::vector<ViewBlock> out;
+  auto it = vtk::TakeSmartPointer(tree->NewTreeIterator());
+  it->SetSkipEmptyNodes(false);
+  it->VisitOnlyLeavesOn();
+  it->TraverseSubTreeOn();
+  for (it->InitTraversal(); !it->IsDoneWithTraversal(); it->GoToNextItem())
+  {
+    std::string name;
+    if (it->HasCurrentMetaData() && it->GetCurrentMetaData()->Has(vtkCompositeDataSet::NAME()))
+    {
+      name = it->GetCurrentMetaData()->Get(vtkCompositeDataSet::NAME());
+    }
+    const std::string what =
+      "view " + std::to_string(out.size()) + (name.empty() ? "" : " ('" + name + "')");
+    auto* image = vtkImageData::SafeDownCast(it->GetCurrentDataObject());
+    if (!image)
+    {
+      throw Error(what + ": no camera data (the block is " +
+        (it->GetCurrentDataObject() ? std::string("a ") + it->GetCurrentDataObject()->GetClassName()
+                                    : std::string("empty")) +
+        ", not a vtkImageData with ImageSize, K, R and t in its field data)");
+    }
+    vtkFieldData* fd = image->GetFieldData();
+    double size[2], k[9], r[9], t[3];
+    std::string missing;
+    if (!GetTuple(fd, ImageSizeName, 2, size))
+    {
+      missing += " ImageSize";
+    }
+    if (!GetTuple(fd, KName, 9, k))
+    {
+      missing += " K";
+    }
+    if (!GetTuple(fd, RName, 9, r))
+    {
+      missing += " R";
+    }
+    if (!GetTuple(fd, TName, 3, t))
+    {
+      missing += " t";
+    }
+    if (!missing.empty())
+    {
+      throw Error(what + ": no camera data (field arrays ImageSize (2), K (9), R (9) and t (3) are "
+                         "needed; missing or malformed:" + missing + ")");
+    }
+    if (k[1] != 0.0)
+    {
+      throw Error(what + ": K has a skew term (K[0][1] = " + std::to_string(k[1]) +
+        "); MeshNBV cameras have none");
+    }
+    ViewBlock v;
+    v.block = image;
+    meshnbv::PinholeCamera& c = v.view.camera;
+    c.width = static_cast<int>(size[0]);
+    c.height = static_cast<int>(size[1]);
+    c.fx = k[0];
+    c.cx = k[2];
+    c.fy = k[4];
+    c.cy = k[5];
+    for (int i = 0; i < 9; ++i)
+    {
+      c.R(i / 3, i % 3) = r[i];
+    }
+    c.t = meshnbv::Vec3(t[0], t[1], t[2]);
+    double distortion[2];
+    if (GetTuple(fd, DistortionName, 2, distortion))
+    {
+      c.k1 = distortion[0];
+      c.k2 = distortion[1];
+    }
+    double used = 1;
+    GetTuple(fd, UsedName, 1, &used);
+    v.view.used = used != 0;
+    v.view.label = GetString(fd, LabelName);
+    if (v.view.label.empty())
+    {
+      v.view.label = name.empty() ? "view_" + std::to_string(out.size()) : name;
+    }
+    v.view.image_path = GetString(fd, ImagePathName);
+    if (vtkDataArray* pixels = PixelArray(image))
+    {
+      const int nc = pixels->GetNumberOfComponents();
+      if (pixels->GetDataType() != VTK_UNSIGNED_CHAR || nc < 1 || nc > 4)
+      {
+        throw Error(what + ": pixels must be unsigned char with 1 to 4 components, got " +
+          pixels->GetDataTypeAsString() + " with " + std::to_string(nc));
+      }
+      v.hasPixels = true;
+    }
+    out.push_back(std::move(v));
+  }
+  return out;
+}
+
+meshnbv::Image ToImage(const ViewBlock& view)
+{
+  vtkImageData* block = view.block;
+  auto* a = vtkUnsignedCharArray::SafeDownCast(PixelArray(block));
+  int dims[3];
+  block->GetDimensions(dims);
+  if (!a || dims[2] != 1 || a->GetNumberOfTuples() != static_cast<vtkIdType>(dims[0]) * dims[1])
+  {
+    throw Error("view '" + view.view.label + "': the pixels are not a 2-D unsigned char image");
+  }
+  const int nc = a->GetNumberOfComponents();
+  const int channels = nc >= 3 ? 3 : 1;  // alpha dropped
+  meshnbv::Image image(dims[0], dims[1], channels);
+  for (int y = 0; y < dims[1]; ++y)
+  {
+    const unsigned char* src = a->GetPointer(static_cast<vtkIdType>(dims[1] - 1 - y) * dims[0] * nc);
+    std::uint8_t* dst = image.pixel(0, y);
+    for (int x = 0; x < dims[0]; ++x)
+    {
+      for (int c = 0; c < channels; ++c)
+      {
+        dst[x * channels + c] = src[x * nc + c];
+      }
+    }
+  }
+  return image;
+}
+
+} // namespace vtkMeshNBV

@@ -1,0 +1,68 @@
+// Private to the MeshNBV VTK module: moves data between VTK objects and the
+// core's types (docs/vtk.md describes the layouts). No algorithm lives here;
+// every function either converts or throws meshnbv::Error with a message
+// naming the block or cell at fault.
+#ifndef vtkMeshNBVConversion_h
+#define vtkMeshNBVConversion_h
+
+#include "vtkSmartPointer.h"
+
+#include "meshnbv/image.h"
+#include "meshnbv/mesh.h"
+#include "meshnbv/scene.h"
+
+#include <string>
+#include <vector>
+
+class vtkDataObject;
+class vtkImageData;
+class vtkPolyData;
+
+namespace vtkMeshNBV
+{
+
+// Field-data names of a view block (vtkImageData) of a views input/output.
+constexpr const char* LabelName = "Label";          // vtkStringArray, 1 value
+constexpr const char* ImageSizeName = "ImageSize";  // vtkIntArray, 2 components (W, H)
+constexpr const char* KName = "K";                  // vtkDoubleArray, 9 components, row-major
+constexpr const char* RName = "R";                  // vtkDoubleArray, 9 components, row-major
+constexpr const char* TName = "t";                  // vtkDoubleArray, 3 components
+constexpr const char* DistortionName = "Distortion";  // vtkDoubleArray, 2 components (k1, k2)
+constexpr const char* UsedName = "Used";            // vtkIntArray, 1 value (0 / 1)
+constexpr const char* ImagePathName = "ImagePath";  // vtkStringArray, 1 value ("" = none)
+constexpr const char* PixelsName = "Pixels";        // point scalars, unsigned char, 1 or 3 components
+// Field data of the mesh output: where the mesh came from.
+constexpr const char* MeshFileName = "MeshFileName";
+// Field data of the views output: the scene file and its format.
+constexpr const char* SceneFileName = "FileName";
+constexpr const char* SceneFormatName = "Format";
+// Field data of the suggestions table: the core's JSON document.
+constexpr const char* SuggestionsJSONName = "SuggestionsJSON";
+
+// vtkPolyData made only of triangles (polys) -> core mesh; cell i = face i.
+// Throws for vertices, lines, strips or polygons that are not triangles.
+meshnbv::TriangleMesh ToTriangleMesh(vtkPolyData* polydata);
+// Core mesh -> vtkPolyData: per-face attributes become float cell arrays of
+// the same name, face colours an "RGB" unsigned char cell array.
+vtkSmartPointer<vtkPolyData> ToPolyData(const meshnbv::TriangleMesh& mesh);
+
+// A view block; `pixels` (may be null) become the "Pixels" point scalars,
+// rows flipped so that the block looks upright (vtkPNGReader's layout).
+vtkSmartPointer<vtkImageData> ToViewBlock(const meshnbv::View& view, const meshnbv::Image* pixels);
+
+struct ViewBlock
+{
+  meshnbv::View view;             // camera, label, used; image_path = the block's ImagePath
+  vtkImageData* block = nullptr;  // the leaf it came from
+  bool hasPixels = false;         // the block carries "Pixels" point scalars
+};
+// Every leaf of a views input (a vtkMultiBlockDataSet of vtkImageData, possibly
+// nested), in order. Throws when a leaf is not an image or lacks ImageSize, K, R, t.
+std::vector<ViewBlock> ExtractViews(vtkDataObject* views);
+// The pixels of a block as a core image (rows flipped back to top-down).
+meshnbv::Image ToImage(const ViewBlock& view);
+
+} // namespace vtkMeshNBV
+
+#endif
+// VTK-HeaderTest-Exclude: vtkMeshNBVConversion.h

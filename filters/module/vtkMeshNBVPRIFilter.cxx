@@ -1,0 +1,163 @@
+#include "vtkMeshNBVPRIFilter.h"
+
+#include "vtkAlgorithm.h"
+#include "vtkCellData.h"
+#include "vtkDataObjectTree.h"
+#include "vtkFloatArray.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
+#include "vtkIntArray.h"
+#include "vtkNew.h"
+#include "vtkObjectFactory.h"
+#include "vtkPolyData.h"
+
+#include "vtkMeshNBVConversion.h"
+#include "vtkMeshNBVProgress.h"
+#include "vtkMeshNBVTemporaryFolder.h"
+
+#include "meshnbv/error.h"
+#include "meshnbv/pri.h"
+
+#include <algorithm>
+#include <memory>
+
+vtkStandardNewMacro(vtkMeshNBVPRIFilter);
+
+//------------------------------------------------------------------------------
+vtkMeshNBVPRIFilter::vtkMeshNBVPRIFilter()
+  : PRIArrayName("PRI")
+  , PRIViewsArrayName("PRIViews")
+{
+  // The defaults are the core's, so that the three front ends agree.
+  const meshnbv::PriOptions defaults;
+  this->Measure = defaults.measure == meshnbv::Measure::NCC ? NCC : SSD;
+  this->SamplesPerSide = defaults.samples_per_side;
+  this->MaxViewsPerFace = defaults.max_views_per_face;
+  this->MaxIncidenceAngle = defaults.max_incidence_angle;
+  this->CheckInteriorOcclusion = defaults.check_interior_occlusion;
+  this->Color = defaults.color;
+  this->TexturelessVariance = defaults.textureless_variance;
+  this->Threads = defaults.threads;
+  this->SetNumberOfInputPorts(2);
+}
+
+//------------------------------------------------------------------------------
+vtkMeshNBVPRIFilter::~vtkMeshNBVPRIFilter() = default;
+
+//------------------------------------------------------------------------------
+const char* vtkMeshNBVPRIFilter::GetMeasureAsString()
+{
+  return this->Measure == NCC ? "ncc" : "ssd";
+}
+
+//------------------------------------------------------------------------------
+int vtkMeshNBVPRIFilter::FillInputPortInformation(int port, vtkInformation* info)
+{
+  if (port == 1)
+  {
+    info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkDataObjectTree");
+    // Optional for the pipeline so that a missing views input is reported
+    // by this filter, with a message saying what to connect.
+    info->Set(vtkAlgorithm::INPUT_IS_OPTIONAL(), 1);
+    return 1;
+  }
+  return this->Superclass::FillInputPortInformation(port, info);
+}
+
+//------------------------------------------------------------------------------
+int vtkMeshNBVPRIFilter::RequestData(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  vtkPolyData* input = vtkPolyData::GetData(inputVector[0], 0);
+  vtkDataObject* views = vtkDataObject::GetData(inputVector[1], 0);
+  vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
+  output->Initialize();
+  try
+  {
+    if (!views)
+    {
+      throw meshnbv::Error("no views input: connect the views to input port 1 (e.g. "
+                           "vtkMeshNBVSceneReader's output port 1)");
+    }
+    meshnbv::Scene scene;
+    scene.mesh = vtkMeshNBV::ToTriangleMesh(input);
+    // Pixels carried by the pipeline are what is compared: they reach the
+    // core as lossless PNG files in a private temporary folder (the core
+    // reads images by path); blocks without pixels use their ImagePath.
+    std::unique_ptr<vtkMeshNBV::TemporaryFolder> folder;
+    for (const vtkMeshNBV::ViewBlock& block : vtkMeshNBV::ExtractViews(views))
+    {
+      meshnbv::View view = block.view;
+      if (block.hasPixels && view.used)
+      {
+        const meshnbv::Image image = vtkMeshNBV::ToImage(block);
+        if (image.width() != view.camera.width || image.height() != view.camera.height)
+        {
+          throw meshnbv::Error("view '" + view.label + "': the pixels are " +
+            std::to_string(image.width()) + "x" + std::to_string(image.height()) +
+            " but its camera says " + std::to_string(view.camera.width) + "x" +
+            std::to_string(view.camera.height));
+        }
+        if (!folder)
+        {
+          folder = std::make_unique<vtkMeshNBV::TemporaryFolder>();
+        }
+        view.image_path =
+          folder->Path() + "/view_" + std::to_string(scene.views.size()) + ".png";
+        image.save(view.image_path);
+      }
+      scene.views.push_back(std::move(view));
+    }
+
+    meshnbv::PriOptions options;
+    options.measure = this->Measure == NCC ? meshnbv::Measure::NCC : meshnbv::Measure::SSD;
+    options.samples_per_side = this->SamplesPerSide;
+    options.max_views_per_face = this->MaxViewsPerFace;
+    options.max_incidence_angle = this->MaxIncidenceAngle;
+    options.check_interior_occlusion = this->CheckInteriorOcclusion != 0;
+    options.color = this->Color != 0;
+    options.textureless_variance = this->TexturelessVariance;
+    options.threads = this->Threads;
+    const meshnbv::PriResult result = meshnbv::compute_pri(scene, options,
+      vtkMeshNBV::MakeProgressCallback(this, { { "visibility", 0.2 }, { "pri", 0.8 } }));
+
+    vtkNew<vtkFloatArray> pri;
+    pri->SetName(this->PRIArrayName.c_str());
+    pri->SetNumberOfTuples(static_cast<vtkIdType>(result.pri.size()));
+    std::copy(result.pri.begin(), result.pri.end(), pri->GetPointer(0));
+    vtkNew<vtkIntArray> count;
+    count->SetName(this->PRIViewsArrayName.c_str());
+    count->SetNumberOfTuples(static_cast<vtkIdType>(result.pri_views.size()));
+    std::copy(result.pri_views.begin(), result.pri_views.end(), count->GetPointer(0));
+    output->ShallowCopy(input);
+    output->GetCellData()->AddArray(pri);
+    output->GetCellData()->AddArray(count);
+  }
+  catch (const meshnbv::Cancelled&)
+  {
+    output->Initialize(); // AbortExecute was set: no result, and no error
+  }
+  catch (const std::exception& e)
+  {
+    output->Initialize();
+    vtkErrorMacro(<< e.what());
+    return 0;
+  }
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+void vtkMeshNBVPRIFilter::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "Measure: " << this->GetMeasureAsString() << "\n";
+  os << indent << "SamplesPerSide: " << this->SamplesPerSide << "\n";
+  os << indent << "MaxViewsPerFace: " << this->MaxViewsPerFace << "\n";
+  os << indent << "MaxIncidenceAngle: " << this->MaxIncidenceAngle << "\n";
+  os << indent << "CheckInteriorOcclusion: " << this->CheckInteriorOcclusion << "\n";
+  os << indent << "Color: " << this->Color << "\n";
+  os << indent << "TexturelessVariance: " << this->TexturelessVariance << "\n";
+  os << indent << "Threads: " << this->Threads << "\n";
+  os << indent << "PRIArrayName: " << this->PRIArrayName << "\n";
+  os << indent << "PRIViewsArrayName: " << this->PRIViewsArrayName << "\n";
+}

@@ -1,0 +1,172 @@
+/**
+ * @class   vtkMeshNBVPRIFilter
+ * @brief   per-face Photo-consistency Reconstruction Index (PRI) of a mesh
+ *
+ * vtkMeshNBVPRIFilter computes, for every triangle of a reconstructed mesh,
+ * how well the calibrated photos agree about it: the Photo-consistency
+ * Reconstruction Index of Morreale, Romanoni, Matteucci, "Predicting the
+ * Next Best View for 3D Mesh Refinement" (2018). Each face is sampled on a
+ * barycentric lattice, the samples are projected into every view that sees
+ * the face, and the patches of every pair of views are compared (SSD or
+ * NCC). Higher is worse; faces seen by fewer than two views get NaN. The
+ * work is done by the MeshNBV core (meshnbv::compute_pri, docs/pri.md);
+ * this class only converts data.
+ *
+ * Input 0: the mesh (vtkPolyData of triangles only). Input 1: the views, a
+ * vtkMultiBlockDataSet of vtkImageData as vtkMeshNBVSceneReader's output 1
+ * makes them (camera in field data; pixels as point scalars, or else the
+ * file named by "ImagePath"). Views with "Used" = 0 do not take part.
+ *
+ * Output: the mesh with two cell arrays, PRI (float, NaN where undefined)
+ * and PRIViews (int, the views compared per face), named by
+ * PRIArrayName and PRIViewsArrayName.
+ *
+ * The options carry the names and defaults of the core, the command line
+ * (`meshnbv pri`) and the JSON summary, in CamelCase. Progress is reported
+ * through UpdateProgress; setting AbortExecute (e.g. from a ProgressEvent
+ * observer) cancels the computation and leaves the output empty. Errors
+ * (no views input, a view without camera data, a missing image, a mesh
+ * that is not made of triangles, ...) are reported with vtkErrorMacro and
+ * the core's message, and the output stays empty.
+ *
+ * @sa vtkMeshNBVSceneReader vtkMeshNBVNextBestViewFilter
+ */
+
+#ifndef vtkMeshNBVPRIFilter_h
+#define vtkMeshNBVPRIFilter_h
+
+#include "vtkMeshNBVFiltersModule.h" // For export macro
+#include "vtkPolyDataAlgorithm.h"
+
+#include <string> // For std::string members
+
+class VTKMESHNBVFILTERS_EXPORT vtkMeshNBVPRIFilter : public vtkPolyDataAlgorithm
+{
+public:
+  static vtkMeshNBVPRIFilter* New();
+  vtkTypeMacro(vtkMeshNBVPRIFilter, vtkPolyDataAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  enum MeasureType
+  {
+    SSD = 0, // mean squared difference (the paper's choice)
+    NCC = 1  // (1 - normalised cross-correlation) / 2
+  };
+
+  ///@{
+  /**
+   * The photo-consistency measure (`measure`): SSD (default) or NCC.
+   */
+  vtkSetClampMacro(Measure, int, SSD, NCC);
+  vtkGetMacro(Measure, int);
+  void SetMeasureToSSD() { this->SetMeasure(SSD); }
+  void SetMeasureToNCC() { this->SetMeasure(NCC); }
+  const char* GetMeasureAsString();
+  ///@}
+
+  ///@{
+  /**
+   * Lattice subdivisions per face side (`samples_per_side`); 0 (default) =
+   * automatic: the largest projected edge in pixels, clamped to [2, 32].
+   */
+  vtkSetMacro(SamplesPerSide, int);
+  vtkGetMacro(SamplesPerSide, int);
+  ///@}
+
+  ///@{
+  /**
+   * Views compared per face (`max_views_per_face`), smallest incidence angle
+   * first; 0 (default) = all of them.
+   */
+  vtkSetMacro(MaxViewsPerFace, int);
+  vtkGetMacro(MaxViewsPerFace, int);
+  ///@}
+
+  ///@{
+  /**
+   * Views seeing a face at a larger angle to its normal, in degrees, do not
+   * count as seeing it (`max_incidence_angle`, default 80; 90 = plain
+   * back-face rule).
+   */
+  vtkSetMacro(MaxIncidenceAngle, double);
+  vtkGetMacro(MaxIncidenceAngle, double);
+  ///@}
+
+  ///@{
+  /**
+   * Also require a face's centroid and edge midpoints to be unoccluded
+   * (`check_interior_occlusion`, default on).
+   */
+  vtkSetMacro(CheckInteriorOcclusion, vtkTypeBool);
+  vtkGetMacro(CheckInteriorOcclusion, vtkTypeBool);
+  vtkBooleanMacro(CheckInteriorOcclusion, vtkTypeBool);
+  ///@}
+
+  ///@{
+  /**
+   * Compare R, G, B instead of luminance (`color`, default off).
+   */
+  vtkSetMacro(Color, vtkTypeBool);
+  vtkGetMacro(Color, vtkTypeBool);
+  vtkBooleanMacro(Color, vtkTypeBool);
+  ///@}
+
+  ///@{
+  /**
+   * NCC: patches with a lower variance are textureless
+   * (`textureless_variance`, default 1e-6).
+   */
+  vtkSetMacro(TexturelessVariance, double);
+  vtkGetMacro(TexturelessVariance, double);
+  ///@}
+
+  ///@{
+  /**
+   * Worker threads (`threads`); 0 (default) = all cores. The result does not
+   * depend on it.
+   */
+  vtkSetMacro(Threads, int);
+  vtkGetMacro(Threads, int);
+  ///@}
+
+  ///@{
+  /**
+   * Names of the output cell arrays: PRI (default "PRI") and the number of
+   * views compared per face (default "PRIViews").
+   */
+  vtkSetStdStringFromCharMacro(PRIArrayName);
+  vtkGetCharFromStdStringMacro(PRIArrayName);
+  vtkSetStdStringFromCharMacro(PRIViewsArrayName);
+  vtkGetCharFromStdStringMacro(PRIViewsArrayName);
+  ///@}
+
+  /**
+   * Connect the views (input port 1).
+   */
+  void SetViewsConnection(vtkAlgorithmOutput* output) { this->SetInputConnection(1, output); }
+  void SetViewsData(vtkDataObject* views) { this->SetInputData(1, views); }
+
+protected:
+  vtkMeshNBVPRIFilter();
+  ~vtkMeshNBVPRIFilter() override;
+
+  int FillInputPortInformation(int port, vtkInformation* info) override;
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
+  int Measure;
+  int SamplesPerSide;
+  int MaxViewsPerFace;
+  double MaxIncidenceAngle;
+  vtkTypeBool CheckInteriorOcclusion;
+  vtkTypeBool Color;
+  double TexturelessVariance;
+  int Threads;
+  std::string PRIArrayName;
+  std::string PRIViewsArrayName;
+
+private:
+  vtkMeshNBVPRIFilter(const vtkMeshNBVPRIFilter&) = delete;
+  void operator=(const vtkMeshNBVPRIFilter&) = delete;
+};
+
+#endif
