@@ -15,6 +15,10 @@ namespace {
 struct Fixture {
   synth::SynthProject project;
   std::vector<float> pri;
+  // The ground-truth error where PRI is defined: a perfect quality map, so
+  // that the planner tests do not depend on PRI's own false positives
+  // (those are measured in test_pri_quality.cpp).
+  std::vector<float> oracle;
 };
 
 const Fixture& fixture() {
@@ -34,6 +38,9 @@ const Fixture& fixture() {
     Fixture out;
     out.project = synth::write_synthetic_project(o, test::temp_dir("planner"));
     out.pri = compute_pri(out.project.scene).pri;
+    out.oracle = out.project.gt_error;
+    for (std::size_t f = 0; f < out.pri.size(); ++f)
+      if (std::isnan(out.pri[f])) out.oracle[f] = std::numeric_limits<float>::quiet_NaN();
     return out;
   }();
   return f;
@@ -60,7 +67,7 @@ TEST(Planner, WorstRegionIsTheDent) {
 TEST(Planner, TopSuggestionSeesTheRegionWithParallax) {
   const Fixture& f = fixture();
   SuggestOptions o;
-  const SuggestResult r = suggest_views(f.project.scene, f.pri, o);
+  const SuggestResult r = suggest_views(f.project.scene, f.oracle, o);
   ASSERT_EQ(r.suggestions.size(), 1u);
   const Suggestion& s = r.suggestions[0];
   const WorstRegion& region = r.regions[0];
@@ -92,10 +99,10 @@ TEST(Planner, SampledAndRefinedRespectSafetyAndRefinedIsNoWorse) {
   o.top = 3;
   o.safety_distance = 0.2;  // a large margin ...
   o.sampling.distance_factors = {0.05, 0.75, 1.0};  // ... and poses close in, so the rule binds
-  const SuggestResult sampled = suggest_views(f.project.scene, f.pri, o);
+  const SuggestResult sampled = suggest_views(f.project.scene, f.oracle, o);
   o.mode = CandidateMode::Refined;
   o.refine_best = 4;
-  const SuggestResult refined = suggest_views(f.project.scene, f.pri, o);
+  const SuggestResult refined = suggest_views(f.project.scene, f.oracle, o);
   ASSERT_EQ(sampled.suggestions.size(), 3u);
   ASSERT_EQ(refined.suggestions.size(), 3u);
   for (const auto* r : {&sampled, &refined})
@@ -110,15 +117,15 @@ TEST(Planner, SameSeedSameSuggestions) {
   const Fixture& f = fixture();
   SuggestOptions o;
   o.top = 2;
-  const SuggestResult a = suggest_views(f.project.scene, f.pri, o);
-  const SuggestResult b = suggest_views(f.project.scene, f.pri, o);
+  const SuggestResult a = suggest_views(f.project.scene, f.oracle, o);
+  const SuggestResult b = suggest_views(f.project.scene, f.oracle, o);
   ASSERT_EQ(a.suggestions.size(), b.suggestions.size());
   for (std::size_t i = 0; i < a.suggestions.size(); ++i) {
     EXPECT_EQ(a.suggestions[i].camera.R, b.suggestions[i].camera.R);
     EXPECT_EQ(a.suggestions[i].camera.t, b.suggestions[i].camera.t);
   }
   o.sampling.seed = 99;
-  const SuggestResult c = suggest_views(f.project.scene, f.pri, o);
+  const SuggestResult c = suggest_views(f.project.scene, f.oracle, o);
   EXPECT_NE(c.suggestions[0].camera.t, a.suggestions[0].camera.t);
 }
 
@@ -126,7 +133,7 @@ TEST(Planner, BatchTreatsEarlierPicksAsExisting) {
   const Fixture& f = fixture();
   SuggestOptions o;
   o.top = 4;
-  const SuggestResult r = suggest_views(f.project.scene, f.pri, o);
+  const SuggestResult r = suggest_views(f.project.scene, f.oracle, o);
   ASSERT_EQ(r.suggestions.size(), 4u);
   // Later picks keep parallax with the earlier ones: no two picks share a
   // centre closer than delta times their distance to the region.
@@ -151,7 +158,7 @@ TEST(Planner, GivenModeRanksEveryCandidate) {
   SuggestOptions o;
   o.mode = CandidateMode::Given;
   o.top = 2;
-  const SuggestResult r = suggest_views(scene, f.pri, o);
+  const SuggestResult r = suggest_views(scene, f.oracle, o);
   ASSERT_EQ(r.ranking.size(), 9u);
   for (std::size_t i = 1; i < r.ranking.size(); ++i)
     EXPECT_GE(r.ranking[i - 1].energy.total, r.ranking[i].energy.total);
@@ -166,11 +173,11 @@ TEST(Planner, BadInput) {
   MESHNBV_EXPECT_ERROR_CONTAINS(suggest_views(f.project.scene, none, o), "no observed face");
   SuggestOptions far = o;
   far.safety_distance = 10.0;  // ten diagonals: nothing sampled can be that far
-  MESHNBV_EXPECT_ERROR_CONTAINS(suggest_views(f.project.scene, f.pri, far), "no candidate left");
+  MESHNBV_EXPECT_ERROR_CONTAINS(suggest_views(f.project.scene, f.oracle, far), "no candidate left");
   SuggestOptions given = o;
   given.mode = CandidateMode::Given;
-  MESHNBV_EXPECT_ERROR_CONTAINS(suggest_views(f.project.scene, f.pri, given), "no candidate views");
+  MESHNBV_EXPECT_ERROR_CONTAINS(suggest_views(f.project.scene, f.oracle, given), "no candidate views");
   SuggestOptions bad = o;
   bad.worst_k = 0;
-  MESHNBV_EXPECT_ERROR_CONTAINS(suggest_views(f.project.scene, f.pri, bad), "worst_k");
+  MESHNBV_EXPECT_ERROR_CONTAINS(suggest_views(f.project.scene, f.oracle, bad), "worst_k");
 }

@@ -131,7 +131,11 @@ INSTANTIATE_TEST_SUITE_P(Synthetic, PriFindsDegradation,
                              std::make_tuple("building", "noise:0.01:0.3", Floors{0.72, 0.88, 0.3, 0.4}),
                              std::make_tuple("building", "dent:0.03:0.2", Floors{0.9, 0.97, 0.33, 0.38}),
                              std::make_tuple("fortress", "noise:0.01:0.3", Floors{0.8, 0.83, 0.38, 0.43}),
-                             std::make_tuple("fortress", "bump:0.02:0.2", Floors{0.92, 0.95, 0.15, 0.24})));
+                             std::make_tuple("fortress", "bump:0.02:0.2", Floors{0.92, 0.95, 0.15, 0.24})),
+                         [](const auto& info) {
+                           const std::string& d = std::get<1>(info.param);
+                           return std::get<0>(info.param) + "_" + d.substr(0, d.find(':'));
+                         });
 
 TEST(PriQuality, TruthIsNearZero) {
   synth::SynthProject p = project("building", "dent:0.03:0.2");

@@ -71,6 +71,21 @@ class FloatImage {
   }
   // Writes channels() values; false outside [0, W-1] x [0, H-1] or for NaN.
   bool sample(double x, double y, float* out) const;
+  // The same for a one-channel plane, inline for the photo-consistency
+  // inner loop. On the last row/column the cell is clamped and the weight
+  // is 1, which gives the same value as sample().
+  bool sample_gray(double x, double y, float* out) const {
+    if (!(x >= 0.0 && y >= 0.0 && x <= width_ - 1.0 && y <= height_ - 1.0)) return false;
+    if (width_ < 2 || height_ < 2) return sample(x, y, out);
+    int ix = static_cast<int>(x), iy = static_cast<int>(y);
+    if (ix > width_ - 2) ix = width_ - 2;
+    if (iy > height_ - 2) iy = height_ - 2;
+    const float wx = static_cast<float>(x - ix), wy = static_cast<float>(y - iy);
+    const float* r0 = &data_[std::size_t(iy) * width_ + ix];
+    const float* r1 = r0 + width_;
+    *out = (1 - wy) * ((1 - wx) * r0[0] + wx * r0[1]) + wy * ((1 - wx) * r1[0] + wx * r1[1]);
+    return true;
+  }
 
  private:
   int width_ = 0, height_ = 0, channels_ = 0;
