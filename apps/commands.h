@@ -25,6 +25,7 @@ void add_synth_command(CLI::App& app);
 void add_pri_command(CLI::App& app);
 void add_suggest_command(CLI::App& app);
 void add_run_command(CLI::App& app);
+void add_loop_command(CLI::App& app);
 // The next-view options as flags, shared by suggest and run.
 void add_suggest_options(CLI::App* cmd, SuggestOptions* options, std::string* mode, std::string* weights);
 // "m1,m2,m3,m4" -> four numbers; throws Error otherwise.

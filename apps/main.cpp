@@ -18,6 +18,7 @@ int main(int argc, char** argv) {
   meshnbv::cli::add_pri_command(app);
   meshnbv::cli::add_suggest_command(app);
   meshnbv::cli::add_run_command(app);
+  meshnbv::cli::add_loop_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

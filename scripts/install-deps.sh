@@ -12,6 +12,12 @@ PACKAGES=(
   nlohmann-json3-dev libpugixml-dev libcli11-dev libtinyobjloader-dev
   # tests and benchmarks
   libgtest-dev libgmock-dev libbenchmark-dev python3
+  # evaluation loop (core/src/eval, bench/eval): Boost.Graph max-flow for the
+  # visibility mesher, COLMAP 3.8 for sparse reconstruction, plots
+  libboost-dev colmap python3-matplotlib
+  # robustness (fuzz/, docs/robustness.md): clang 14 with libFuzzer and the
+  # sanitizer runtimes
+  clang libclang-rt-14-dev
   # VTK pipeline algorithms (filters/), Python-wrapped, rendered under Xvfb
   libvtk9-dev python3-vtk9 vtk9 python3-numpy xvfb xauth
   # MeshLab 2020.09 plugin (plugins/meshlab/): MeshLab itself, Qt and GL to

@@ -1,0 +1,276 @@
+// meshnbv loop: the paper's experiment (incremental view selection with a
+// real reconstruction backend); meshnbv evaluate: Middlebury-style metrics.
+#include <cmath>
+#include <filesystem>
+#include <iomanip>
+#include <iostream>
+#include <memory>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "commands.h"
+#include "meshnbv/error.h"
+#include "meshnbv/eval/loop.h"
+#include "meshnbv/io/file_util.h"
+#include "meshnbv/io/mesh_io.h"
+#include "progress_bar.h"
+
+namespace fs = std::filesystem;
+
+namespace meshnbv::cli {
+namespace {
+
+std::vector<double> parse_numbers(const std::string& text, const std::string& what) {
+  std::vector<double> out;
+  std::stringstream ss(text);
+  std::string item;
+  while (std::getline(ss, item, ',')) {
+    try {
+      std::size_t used = 0;
+      const double x = std::stod(item, &used);
+      if (used != item.size() || !std::isfinite(x)) throw std::invalid_argument(item);
+      out.push_back(x);
+    } catch (const std::exception&) {
+      throw Error(what + ": '" + item + "' is not a number (expected a comma-separated list)");
+    }
+  }
+  if (out.empty()) throw Error(what + ": expected a comma-separated list of numbers");
+  return out;
+}
+
+std::string join_metrics(const eval::EvaluationResult& m) {
+  std::ostringstream ss;
+  ss << std::setprecision(4);
+  ss << "accuracy";
+  for (const auto& [p, v] : m.accuracy) ss << " " << p << "%=" << v;
+  ss << ", completeness";
+  for (const auto& [t, v] : m.completeness) ss << " " << t << "=" << 100.0 * v << "%";
+  return ss.str();
+}
+
+}  // namespace
+
+void add_loop_command(CLI::App& app) {
+  struct Args {
+    std::string dataset, out, cache, strategy = "nbv", mode = "given",
+                                     weights = "0.6,1.6,2.1,0.6", measure = "ssd";
+    std::string bootstrap_views, thresholds, percentiles = "80,90,99", mesher = "delaunay",
+                                             labelling = "graphcut", facet_support = "any";
+    eval::LoopOptions options;
+    bool overwrite = false, quiet = false;
+  };
+  auto a = std::make_shared<Args>();
+  CLI::App* cmd = app.add_subcommand(
+      "loop",
+      "The paper's experiment: bootstrap with a few views, then repeatedly reconstruct (COLMAP "
+      "sparse points with the known poses + a Delaunay visibility mesher), measure accuracy and "
+      "completeness, and add the view a strategy chooses");
+  cmd->add_option("dataset", a->dataset,
+                  "Calibrated images to choose from (Middlebury folder, COLMAP model, .mlp, "
+                  ".json) or a folder made by `meshnbv synth` (ground truth; new poses rendered)")
+      ->required();
+  cmd->add_option("--out", a->out, "Output folder: steps.csv, loop.json, meshes/, reference.ply")
+      ->required();
+  cmd->add_option("--strategy", a->strategy, "How the next view is chosen")
+      ->check(CLI::IsMember({"nbv", "uniform", "random", "coverage"}))
+      ->capture_default_str();
+  cmd->add_option("--bootstrap", a->options.bootstrap, "Views of the first reconstruction")
+      ->capture_default_str();
+  cmd->add_option("--bootstrap-views", a->bootstrap_views,
+                  "Their indices, comma-separated (default: view 0 and its nearest neighbours)");
+  cmd->add_option("--max-views", a->options.max_views, "Stop at this many views (0 = all)")
+      ->capture_default_str();
+  cmd->add_option("--cache", a->cache,
+                  "Folder for COLMAP's features and matches and the reference, shared by runs on "
+                  "the same dataset (default: <out>/cache)");
+  add_suggest_options(cmd, &a->options.suggest, &a->mode, &a->weights);
+  // The PRI options of add_pri_options, except its --max-views alias: here
+  // --max-views is the loop's own (the name for it).
+  cmd->add_option("--measure", a->measure, "nbv: photo-consistency measure of the PRI")
+      ->check(CLI::IsMember({"ssd", "ncc"}))
+      ->capture_default_str();
+  cmd->add_option("--samples-per-side", a->options.pri.samples_per_side,
+                  "nbv: PRI lattice subdivisions per face side (0 = automatic)")
+      ->capture_default_str();
+  cmd->add_option("--max-views-per-face", a->options.pri.max_views_per_face,
+                  "nbv: views compared per face (0 = all)")
+      ->capture_default_str();
+  cmd->add_option("--max-incidence-angle", a->options.pri.max_incidence_angle,
+                  "nbv: views seeing a face at a larger angle (degrees) are ignored by the PRI")
+      ->capture_default_str();
+  cmd->add_option("--threads", a->options.pri.threads, "Worker threads (0 = all cores)")
+      ->capture_default_str();
+  cmd->add_option("--coverage-min-views", a->options.coverage_min_views,
+                  "coverage: faces seen by fewer selected views count as uncovered")
+      ->capture_default_str();
+  cmd->add_option("--max-point-error", a->options.max_point_error,
+                  "Sparse points with a larger reprojection error (pixels) are not meshed")
+      ->capture_default_str();
+  cmd->add_option("--min-point-views", a->options.delaunay.min_views_per_point,
+                  "delaunay: points seen by fewer views are not meshed")
+      ->capture_default_str();
+  cmd->add_option("--mesher", a->mesher, "Surface from the sparse points")
+      ->check(CLI::IsMember({"delaunay", "poisson"}))
+      ->capture_default_str();
+  cmd->add_option("--labelling", a->labelling, "delaunay: free/occupied tetrahedra by min-cut or vote")
+      ->check(CLI::IsMember({"graphcut", "vote"}))
+      ->capture_default_str();
+  cmd->add_option("--facet-support", a->facet_support,
+                  "delaunay: which boundary triangles are output (any: a camera of a corner faces "
+                  "it; edges: also each edge's ends share a camera; common: one camera saw all "
+                  "three corners; all)")
+      ->check(CLI::IsMember({"all", "any", "edges", "common"}))
+      ->capture_default_str();
+  cmd->add_option("--surface-weight", a->options.delaunay.surface_weight,
+                  "delaunay/graphcut: cost of each surface facet (times the median visibility)")
+      ->capture_default_str();
+  cmd->add_option("--min-component-share", a->options.delaunay.min_component_share,
+                  "delaunay: drop pieces smaller than this share of the largest")
+      ->capture_default_str();
+  cmd->add_option("--poisson-depth", a->options.poisson.depth, "poisson: octree depth")
+      ->capture_default_str();
+  cmd->add_option("--poisson-trim", a->options.poisson.trim, "poisson: trim value")->capture_default_str();
+  cmd->add_option("--matcher", a->options.colmap.matcher,
+                  "COLMAP matcher, run once per dataset (sequential suits ordered rings)")
+      ->check(CLI::IsMember({"exhaustive", "sequential"}))
+      ->capture_default_str();
+  cmd->add_option("--sequential-overlap", a->options.colmap.sequential_overlap,
+                  "sequential matcher: neighbours matched")
+      ->capture_default_str();
+  cmd->add_option("--sift-peak-threshold", a->options.colmap.peak_threshold,
+                  "COLMAP SIFT peak threshold (lower = more features)")
+      ->capture_default_str();
+  cmd->add_option("--guided-matching", a->options.colmap.guided_matching,
+                  "COLMAP matching guided by the verified epipolar geometry (1/0)")
+      ->capture_default_str();
+  cmd->add_option("--colmap", a->options.colmap.executable, "COLMAP executable")->capture_default_str();
+  cmd->add_option("--thresholds", a->thresholds,
+                  "Completeness thresholds in scene units (default: 0.00075,0.00125,0.00175 for "
+                  "real data; 0.5%,1%,2% of the truth's diagonal for synthetic scenes)");
+  cmd->add_option("--percentiles", a->percentiles, "Accuracy percentiles")->capture_default_str();
+  cmd->add_option("--sample-spacing", a->options.evaluation.sample_spacing,
+                  "Distance between surface samples of the metrics (0 = reference diagonal / 500)")
+      ->capture_default_str();
+  cmd->add_option("--save-meshes", a->options.save_meshes, "Reconstructions kept in meshes/")
+      ->check(CLI::IsMember({"all", "last", "none"}))
+      ->capture_default_str();
+  cmd->add_flag("--snapshots", a->options.snapshots,
+                "Pictures of the saved meshes and the reference (PNG, from two dataset views; red = "
+                "a face seen from behind)");
+  cmd->add_flag("--keep-work", a->options.keep_work, "Keep COLMAP's per-step models in <out>/work");
+  cmd->add_flag("--overwrite", a->overwrite, "Write into an output folder holding results");
+  cmd->add_flag("--quiet", a->quiet, "No progress output");
+  cmd->callback([a]() {
+    eval::LoopOptions& o = a->options;
+    o.strategy = eval::parse_strategy(a->strategy);
+    o.nbv_candidates = parse_candidate_mode(a->mode);
+    o.pri.measure = parse_measure(a->measure);
+    o.suggest.energy.weights = parse_weights(a->weights);
+    o.suggest.threads = o.pri.threads;
+    o.suggest.check();
+    o.seed = o.suggest.sampling.seed;
+    o.mesher = eval::parse_mesher(a->mesher);
+    o.delaunay.labelling = eval::parse_labelling(a->labelling);
+    o.delaunay.facet_support = eval::parse_facet_support(a->facet_support);
+    if (!a->bootstrap_views.empty()) {
+      o.bootstrap_views.clear();
+      for (double x : parse_numbers(a->bootstrap_views, "--bootstrap-views")) {
+        if (x != std::floor(x) || x < 0) throw Error("--bootstrap-views: indices must be whole numbers >= 0");
+        o.bootstrap_views.push_back(int(x));
+      }
+    }
+    if (!a->thresholds.empty()) o.thresholds = parse_numbers(a->thresholds, "--thresholds");
+    o.evaluation.percentiles = parse_numbers(a->percentiles, "--percentiles");
+    o.out_dir = a->out;
+    o.cache_dir = a->cache;
+    o.check();
+    o.evaluation.thresholds = o.thresholds.empty() ? o.evaluation.thresholds : o.thresholds;
+    o.evaluation.check();
+    if (fs::exists(fs::path(a->out) / "loop.json") && !a->overwrite)
+      throw Error("output folder holds results of a loop; pass --overwrite to replace them", a->out);
+    if (!eval::colmap_available(o.colmap.executable))
+      throw Error("COLMAP not found ('" + o.colmap.executable +
+                  " help' failed): install Debian's colmap package or pass --colmap");
+    // Replacing results: what an earlier run left must not mix with the new ones.
+    for (const char* sub : {"meshes", "images", "work"}) fs::remove_all(fs::path(a->out) / sub);
+    fs::create_directories(a->out);
+    const std::string cache = a->cache.empty() ? (fs::path(a->out) / "cache").string() : a->cache;
+    ProgressBar bar(a->quiet);
+    const eval::Dataset dataset = eval::load_dataset(a->dataset, cache, bar.callback());
+    bar.finish();
+    if (!a->quiet)
+      std::cout << "dataset: " << dataset.views.size() << " views" << (dataset.synthetic ? " (synthetic)" : "")
+                << "; strategy " << a->strategy << "\n";
+    ProgressBar loop_bar(true);
+    const eval::LoopResult r = eval::run_loop(
+        dataset, o, loop_bar.callback(), [&](const eval::StepRecord& s) {
+          std::cout << "step " << s.step << ": " << s.views.size() << " views";
+          if (!s.added.empty()) std::cout << " (+" << s.added << ", " << s.chosen_by << ")";
+          std::cout << ", " << s.points << " points, " << s.faces << " faces; "
+                    << join_metrics(s.metrics) << "; " << std::setprecision(3)
+                    << s.seconds_reconstruct + s.seconds_pri + s.seconds_choose + s.seconds_evaluate
+                    << " s\n"
+                    << std::flush;
+        });
+    std::cout << "reference: " << r.reference << "\n";
+    std::cout << "results: " << (fs::path(a->out) / "steps.csv").string() << ", "
+              << (fs::path(a->out) / "loop.json").string() << " (" << std::setprecision(4) << r.seconds
+              << " s)\n";
+  });
+
+  // meshnbv evaluate
+  struct EvalArgs {
+    std::string recon, reference, json, thresholds = "0.00075,0.00125,0.00175",
+                                        percentiles = "80,90,99";
+    eval::EvaluationOptions options;
+    bool overwrite = false;
+  };
+  auto e = std::make_shared<EvalArgs>();
+  CLI::App* ev = app.add_subcommand(
+      "evaluate", "Middlebury-style accuracy (distance of the reconstruction to the reference at "
+                  "percentiles) and completeness (share of the reference within thresholds)");
+  ev->add_option("reconstruction", e->recon, "Reconstructed mesh (PLY, OBJ, OFF)")->required();
+  ev->add_option("reference", e->reference, "Reference mesh (ground truth)")->required();
+  ev->add_option("--thresholds", e->thresholds, "Completeness thresholds in scene units")
+      ->capture_default_str();
+  ev->add_option("--percentiles", e->percentiles, "Accuracy percentiles")->capture_default_str();
+  ev->add_option("--sample-spacing", e->options.sample_spacing,
+                 "Distance between surface samples (0 = reference diagonal / 500)")
+      ->capture_default_str();
+  ev->add_option("--json", e->json, "Results as JSON");
+  ev->add_flag("--overwrite", e->overwrite, "Replace an existing JSON file");
+  ev->callback([e]() {
+    e->options.thresholds = parse_numbers(e->thresholds, "--thresholds");
+    e->options.percentiles = parse_numbers(e->percentiles, "--percentiles");
+    e->options.check();
+    if (!e->json.empty()) io::check_can_write(e->json, e->overwrite);
+    const TriangleMesh recon = io::read_mesh(e->recon);
+    const TriangleMesh reference = io::read_mesh(e->reference);
+    const eval::EvaluationResult r = eval::evaluate_reconstruction(recon, reference, e->options);
+    std::cout << join_metrics(r) << "\n"
+              << "samples: " << r.reconstruction_samples << " reconstruction, " << r.reference_samples
+              << " reference, spacing " << r.sample_spacing << "\n";
+    if (!e->json.empty()) {
+      nlohmann::json j;
+      j["format"] = "meshnbv-evaluation";
+      j["reconstruction"] = e->recon;
+      j["reference"] = e->reference;
+      nlohmann::json acc = nlohmann::json::array(), comp = nlohmann::json::array();
+      for (const auto& [p, v] : r.accuracy)
+        acc.push_back({{"percentile", p}, {"distance", std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr)}});
+      for (const auto& [t, v] : r.completeness) comp.push_back({{"threshold", t}, {"share", v}});
+      j["accuracy"] = acc;
+      j["completeness"] = comp;
+      j["mean_accuracy"] = std::isfinite(r.mean_accuracy) ? nlohmann::json(r.mean_accuracy) : nlohmann::json(nullptr);
+      j["samples"] = {{"reconstruction", r.reconstruction_samples},
+                      {"reference", r.reference_samples},
+                      {"spacing", r.sample_spacing}};
+      j["area"] = {{"reconstruction", r.reconstruction_area}, {"reference", r.reference_area}};
+      io::write_atomically(e->json, [&](std::ostream& out) { out << j.dump(2) << "\n"; }, e->overwrite);
+      std::cout << "json: " << e->json << "\n";
+    }
+  });
+}
+
+}  // namespace meshnbv::cli
