@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cctype>
 #include <filesystem>
+#include <functional>
 #include <iomanip>
 #include <map>
 #include <set>
@@ -507,6 +508,8 @@ void write_colmap(const Scene& scene, const std::string& folder, bool overwrite)
   std::error_code ec;
   if (fs::exists(dir, ec) && !fs::is_directory(dir, ec))
     throw Error("is a file; a COLMAP model is a folder", folder);
+  if (scene.views.empty())
+    throw Error("the scene has no view; a COLMAP model needs at least one image", folder);
   // Everything that can fail is checked before the first file is written.
   const ColmapModelText text = build_model_text(scene, dir);
   const std::string cameras = (dir / "cameras.txt").string();
@@ -518,16 +521,32 @@ void write_colmap(const Scene& scene, const std::string& folder, bool overwrite)
 
   fs::create_directories(dir, ec);
   if (ec) throw Error("cannot create folder: " + ec.message(), folder);
-  write_atomically(
-      cameras, [&](std::ostream& out) { write_cameras_txt(out, text); }, overwrite);
-  write_atomically(
-      images, [&](std::ostream& out) { write_images_txt(out, text); }, overwrite);
-  write_atomically(
-      points, [](std::ostream& out) { write_points3d_txt(out); }, overwrite);
-  if (!scene.mesh.empty()) {
-    PlyWriteOptions options;
-    options.overwrite = overwrite;
-    write_ply(scene.mesh, mesh, options);
+  // Each file is written atomically; if a later one fails (disk full), the
+  // ones this call created are removed, so no partial model is left.
+  std::vector<std::string> created;
+  auto track = [&](const std::string& file, const std::function<void()>& write) {
+    const bool existed = fs::exists(file, ec);
+    write();
+    if (!existed) created.push_back(file);
+  };
+  try {
+    track(cameras, [&] {
+      write_atomically(cameras, [&](std::ostream& out) { write_cameras_txt(out, text); }, overwrite);
+    });
+    track(images, [&] {
+      write_atomically(images, [&](std::ostream& out) { write_images_txt(out, text); }, overwrite);
+    });
+    track(points, [&] {
+      write_atomically(points, [](std::ostream& out) { write_points3d_txt(out); }, overwrite);
+    });
+    if (!scene.mesh.empty()) {
+      PlyWriteOptions options;
+      options.overwrite = overwrite;
+      track(mesh, [&] { write_ply(scene.mesh, mesh, options); });
+    }
+  } catch (...) {
+    for (const auto& file : created) fs::remove(file, ec);
+    throw;
   }
 }
 

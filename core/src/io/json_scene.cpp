@@ -4,6 +4,7 @@
 //                "camera": { "width", "height", "fx", "fy", "cx", "cy", "k1", "k2",
 //                            "R": [[3],[3],[3]], "t": [3] } } ] }
 // Paths are relative to the JSON file; camera in our convention.
+#include <cmath>
 #include <filesystem>
 
 #include <nlohmann/json.hpp>
@@ -26,11 +27,41 @@ double number(const json& j, const char* key, const std::string& file, const std
   return v.get<double>();
 }
 
+// An image size: a whole number that fits an int (a cast of 1e300 to int
+// would be undefined behaviour).
+int image_size(const json& j, const char* key, const std::string& file, const std::string& where) {
+  const double v = number(j, key, file, where);
+  if (!(v >= 1 && v <= (1 << 30) && v == std::floor(v)))
+    throw Error(std::string("\"") + key + "\" must be a whole number of pixels in [1, 2^30], got " +
+                    j.at(key).dump(),
+                file, -1, where);
+  return static_cast<int>(v);
+}
+
+// Optional member of a given type: absent or null gives `fallback`; any
+// other type is an error naming the key (json::value() would throw a
+// nlohmann type_error instead, which is not a meshnbv::Error).
+std::string optional_string(const json& j, const char* key, const std::string& fallback,
+                            const std::string& file, const std::string& where) {
+  if (!j.contains(key) || j.at(key).is_null()) return fallback;
+  if (!j.at(key).is_string())
+    throw Error(std::string("\"") + key + "\" must be a string", file, -1, where);
+  return j.at(key).get<std::string>();
+}
+
+bool optional_bool(const json& j, const char* key, bool fallback, const std::string& file,
+                   const std::string& where) {
+  if (!j.contains(key) || j.at(key).is_null()) return fallback;
+  if (!j.at(key).is_boolean())
+    throw Error(std::string("\"") + key + "\" must be true or false", file, -1, where);
+  return j.at(key).get<bool>();
+}
+
 PinholeCamera camera_from_json(const json& j, const std::string& file, const std::string& where) {
   if (!j.is_object()) throw Error("\"camera\" must be an object", file, -1, where);
   PinholeCamera c;
-  c.width = static_cast<int>(number(j, "width", file, where));
-  c.height = static_cast<int>(number(j, "height", file, where));
+  c.width = image_size(j, "width", file, where);
+  c.height = image_size(j, "height", file, where);
   c.fx = number(j, "fx", file, where);
   c.fy = number(j, "fy", file, where);
   c.cx = number(j, "cx", file, where);
@@ -64,32 +95,37 @@ Scene read_json_scene(const std::string& path) {
   json doc;
   try {
     doc = json::parse(text);
-  } catch (const json::parse_error& e) {
+  } catch (const json::exception& e) {
+    // parse_error, and out_of_range for numbers beyond double ("1e400")
     throw Error(std::string("malformed JSON: ") + e.what(), path);
   }
-  if (!doc.is_object() || doc.value("format", "") != "meshnbv-scene")
-    throw Error("not a MeshNBV scene (expected \"format\": \"meshnbv-scene\")", path);
-  if (doc.value("version", 0) != 1)
-    throw Error("unsupported scene version " + doc.value("version", json(0)).dump(), path);
+  const std::string not_ours = "not a MeshNBV scene (expected \"format\": \"meshnbv-scene\")";
+  if (!doc.is_object() || !doc.contains("format") || doc["format"] != "meshnbv-scene")
+    throw Error(not_ours, path);
+  if (!doc.contains("version") || doc["version"] != 1)
+    throw Error("\"version\" must be 1, got " +
+                    (doc.contains("version") ? doc["version"].dump() : std::string("none")),
+                path);
   const std::string base = fs::path(path).parent_path().string();
   Scene scene;
   scene.source = path;
   scene.format = "json";
-  if (doc.contains("mesh") && doc["mesh"].is_string()) {
-    scene.mesh_path = resolve(doc["mesh"].get<std::string>(), base);
+  const std::string mesh = optional_string(doc, "mesh", "", path, "");
+  if (!mesh.empty()) {
+    scene.mesh_path = resolve(mesh, base);
     scene.mesh = read_mesh(scene.mesh_path);
   }
-  const json& views = doc.value("views", json::array());
+  const json& views = doc.contains("views") ? doc["views"] : json::array();
   if (!views.is_array()) throw Error("\"views\" must be an array", path);
   for (std::size_t i = 0; i < views.size(); ++i) {
     const json& jv = views[i];
     const std::string where = "view " + std::to_string(i);
     if (!jv.is_object()) throw Error("must be an object", path, -1, where);
     View v;
-    v.label = jv.value("label", "view_" + std::to_string(i));
-    if (jv.contains("image") && jv["image"].is_string())
-      v.image_path = resolve(jv["image"].get<std::string>(), base);
-    v.used = jv.value("used", true);
+    v.label = optional_string(jv, "label", "view_" + std::to_string(i), path, where);
+    const std::string image = optional_string(jv, "image", "", path, where);
+    if (!image.empty()) v.image_path = resolve(image, base);
+    v.used = optional_bool(jv, "used", true, path, where);
     if (!jv.contains("camera")) throw Error("missing \"camera\"", path, -1, where);
     v.camera = camera_from_json(jv["camera"], path, where + " ('" + v.label + "')");
     scene.views.push_back(std::move(v));
@@ -119,7 +155,25 @@ void write_json_scene(const Scene& scene, const std::string& path, const std::st
                      {"camera", cam}});
   }
   doc["views"] = views;
-  write_atomically(path, [&](std::ostream& out) { out << doc.dump(2) << "\n"; }, overwrite);
+  // JSON text is UTF-8: a label or path that is not (e.g. Latin-1 read from
+  // a .mlp) makes dump() throw; name the view instead, before writing.
+  std::string text;
+  try {
+    text = doc.dump(2);
+  } catch (const json::exception&) {
+    std::string what = "the mesh path";
+    for (std::size_t i = 0; i < views.size(); ++i) {
+      try {
+        (void)views[i].dump();
+      } catch (const json::exception&) {
+        what = "view " + std::to_string(i) + ": the label or image path";
+        break;
+      }
+    }
+    throw Error(what + " is not valid UTF-8, which JSON cannot hold; write .mlp or COLMAP instead",
+                path);
+  }
+  write_atomically(path, [&](std::ostream& out) { out << text << "\n"; }, overwrite);
 }
 
 }  // namespace meshnbv::io

@@ -41,33 +41,38 @@ std::vector<double> numbers(const char* text, std::size_t expected, const std::s
   return out;
 }
 
-std::string base64_decode(const std::string& in) {
+// False when `in` holds a character outside base64 and whitespace.
+bool base64_decode(const std::string& in, std::string* out) {
   static const std::string chars =
       "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-  std::string out;
-  int value = 0, bits = -8;
+  // Only the low 6 + 8 bits matter; unsigned and masked so that long input
+  // never shifts bits out of a signed int (undefined behaviour).
+  unsigned value = 0;
+  int bits = -8;
   for (char c : in) {
     if (c == '=') break;
     auto pos = chars.find(c);
     if (pos == std::string::npos) {
       if (std::isspace(static_cast<unsigned char>(c))) continue;
-      throw Error("invalid base64 data in VCGCamera");
+      return false;
     }
-    value = (value << 6) + int(pos);
+    value = ((value << 6) | static_cast<unsigned>(pos)) & 0x3FFFu;
     bits += 6;
     if (bits >= 0) {
-      out.push_back(char((value >> bits) & 0xFF));
+      out->push_back(char((value >> bits) & 0xFF));
       bits -= 8;
     }
   }
-  return out;
+  return true;
 }
 
 // BinaryData="1": MeshLab stores raw float/int arrays in base64.
 template <typename T>
 std::vector<double> binary_numbers(const char* text, std::size_t count, const std::string& file,
                                    const std::string& what) {
-  std::string bytes = base64_decode(text ? text : "");
+  std::string bytes;
+  if (!base64_decode(text ? text : "", &bytes))
+    throw Error(what + ": invalid base64 data (BinaryData=\"1\")", file);
   if (bytes.size() < count * sizeof(T))
     throw Error(what + ": binary data too short", file);
   std::vector<double> out(count);
@@ -108,6 +113,14 @@ PinholeCamera camera_from_vcg(const pugi::xml_node& node, const std::string& fil
                 file, -1, element);
   if (!(pixel[0] > 0) || !(pixel[1] > 0))
     throw Error("PixelSizeMm must be positive", file, -1, element);
+  // Checked before the cast: converting 1e300 to int is undefined behaviour.
+  for (double v : {viewport[0], viewport[1]})
+    if (!(v >= 1 && v <= (1 << 30))) {
+      std::ostringstream ss;
+      ss << "ViewportPx must be an image size in [1, 2^30], got " << viewport[0] << " "
+         << viewport[1];
+      throw Error(ss.str(), file, -1, element);
+    }
   PinholeCamera cam;
   cam.width = static_cast<int>(viewport[0]);
   cam.height = static_cast<int>(viewport[1]);

@@ -5,8 +5,11 @@
 //
 // Face numbers in messages are 0-based polygon positions over the whole
 // file (all objects and groups), before triangulation.
+#include <algorithm>
 #include <cctype>
 #include <climits>
+#include <cmath>
+#include <cstdlib>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -59,7 +62,78 @@ long find_short_face_line(const std::string& text) {
   return -1;
 }
 
-tinyobj::ObjReader parse(const std::string& text, const std::string& path) {
+// A plain decimal number, as tinyobjloader parses it: [+-] digits [. digits]
+// [e [+-] digits]. Anything else ("nan", "inf", hex, "1,5", "x") it silently
+// reads as 0, and an exponent of 10 digits overflows its int (undefined
+// behaviour), so such numbers are refused before it sees them.
+bool is_decimal(const std::string& token) {
+  std::size_t i = 0, digits = 0;
+  const std::size_t n = token.size();
+  auto is_digit = [&](std::size_t k) {
+    return k < n && std::isdigit(static_cast<unsigned char>(token[k]));
+  };
+  if (i < n && (token[i] == '+' || token[i] == '-')) ++i;
+  while (is_digit(i)) ++i, ++digits;
+  if (i < n && token[i] == '.') {
+    ++i;
+    while (is_digit(i)) ++i, ++digits;
+  }
+  if (digits == 0) return false;
+  if (i < n && (token[i] == 'e' || token[i] == 'E')) {
+    ++i;
+    if (i < n && (token[i] == '+' || token[i] == '-')) ++i;
+    const std::size_t first = i;
+    while (is_digit(i)) ++i;
+    if (i == first || i - first > 6) return false;
+  }
+  return i == n;
+}
+
+// The text tinyobjloader gets: only the statements we use, `v` (checked
+// here: x y z and any w or colour values must be finite decimal numbers),
+// `f`, `o` and `g`. The others (vt, vn, vp, vw, l, p, s, t, usemtl, mtllib,
+// ...) carry nothing we read, and tinyobjloader 2.0.0rc10 parses some of
+// them with undefined behaviour on hostile numbers (vw joint ids cast to int
+// unchecked, exponents overflowing an int): they are blanked, keeping the
+// line breaks so that line numbers in its messages stay right. Lines end at
+// \n, \r or \r\n, as in tinyobjloader.
+std::string used_statements(const std::string& text, const std::string& path) {
+  std::string out = text;
+  long line = 0, vertex = 0;
+  std::size_t pos = 0;
+  while (pos < out.size()) {
+    std::size_t end = out.find_first_of("\r\n", pos);
+    if (end == std::string::npos) end = out.size();
+    ++line;
+    const std::size_t i = out.find_first_not_of(" \t", pos);
+    const bool statement = i != std::string::npos && i + 1 < end &&
+                           (out[i + 1] == ' ' || out[i + 1] == '\t');
+    const char keyword = statement ? out[i] : '\0';
+    if (keyword == 'v') {
+      std::string rest = out.substr(i + 2, end - i - 2);
+      std::istringstream words(rest.substr(0, rest.find('#')));
+      const std::string element = "vertex " + std::to_string(vertex++);
+      std::string word;
+      int count = 0;
+      while (words >> word) {
+        if (!is_decimal(word))
+          throw Error("coordinate '" + word + "' is not a number", path, line, element);
+        if (!std::isfinite(std::strtod(word.c_str(), nullptr)))
+          throw Error("coordinate '" + word + "' is out of range", path, line, element);
+        ++count;
+      }
+      if (count < 3) throw Error("expected x y z, got fewer numbers", path, line, element);
+    } else if (keyword != 'f' && keyword != 'o' && keyword != 'g') {
+      std::fill(out.begin() + static_cast<std::ptrdiff_t>(pos),
+                out.begin() + static_cast<std::ptrdiff_t>(end), ' ');
+    }
+    pos = end + 1;
+  }
+  return out;
+}
+
+tinyobj::ObjReader parse(const std::string& raw_text, const std::string& path) {
+  const std::string text = used_statements(raw_text, path);
   tinyobj::ObjReaderConfig config;
   config.triangulate = false;  // we fan-triangulate, like the PLY reader
   config.vertex_color = false;

@@ -829,9 +829,14 @@ TriangleMesh read_ply(const std::string& path) {
   return mesh;
 }
 
-void write_ply(const TriangleMesh& mesh, const std::string& path, const PlyWriteOptions& options) {
-  check_can_write(path, options.overwrite);
+void write_ply(const TriangleMesh& mesh, const std::string& path, const PlyWriteOptions& requested) {
+  check_can_write(path, requested.overwrite);
   check_writable(mesh, path);
+  // A coordinate beyond float's range would be written as inf: such a mesh
+  // is written in double instead.
+  PlyWriteOptions options = requested;
+  for (const Vec3& p : mesh.vertices)
+    if (p.cwiseAbs().maxCoeff() > std::numeric_limits<float>::max()) options.double_precision = true;
   write_atomically(
       path,
       [&](std::ostream& os) {

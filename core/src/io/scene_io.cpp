@@ -128,15 +128,23 @@ void write_scene(const Scene& scene, const std::string& path, const SceneWriteOp
                     "cannot represent; undistort first or write COLMAP/JSON",
                     path);
   if (!mesh_file.empty()) check_can_write(mesh_file, options.overwrite);
+  std::error_code ec;
+  const bool mesh_existed = !mesh_file.empty() && fs::exists(mesh_file, ec);
   if (!mesh_file.empty()) {
     PlyWriteOptions ply;
     ply.overwrite = options.overwrite;
     write_ply(scene.mesh, mesh_file, ply);
   }
-  if (format == SceneFormat::Mlp)
-    write_mlp(scene, path, mesh_file, options.overwrite);
-  else
-    write_json_scene(scene, path, mesh_file, options.overwrite);
+  try {
+    if (format == SceneFormat::Mlp)
+      write_mlp(scene, path, mesh_file, options.overwrite);
+    else
+      write_json_scene(scene, path, mesh_file, options.overwrite);
+  } catch (...) {
+    // No mesh without its project: remove the one this call created.
+    if (!mesh_file.empty() && !mesh_existed) fs::remove(mesh_file, ec);
+    throw;
+  }
 }
 
 }  // namespace meshnbv::io
