@@ -99,6 +99,9 @@ void add_loop_command(CLI::App& app) {
   cmd->add_option("--max-incidence-angle", a->options.pri.max_incidence_angle,
                   "nbv: views seeing a face at a larger angle (degrees) are ignored by the PRI")
       ->capture_default_str();
+  cmd->add_option("--edge-margin", a->options.pri.edge_margin,
+                  "nbv: the PRI's lattice stays this many pixels inside each face (0 = whole face)")
+      ->capture_default_str();
   cmd->add_option("--threads", a->options.pri.threads, "Worker threads (0 = all cores)")
       ->capture_default_str();
   cmd->add_option("--coverage-min-views", a->options.coverage_min_views,

@@ -26,6 +26,10 @@ void add_pri_options(CLI::App* cmd, PriOptions* o, std::string* measure) {
   cmd->add_option("--max-incidence-angle", o->max_incidence_angle,
                   "Views seeing a face at a larger angle to its normal (degrees) are ignored")
       ->capture_default_str();
+  cmd->add_option("--edge-margin", o->edge_margin,
+                  "Keep the sampling lattice this many pixels inside the face in every view "
+                  "(0 = the whole face)")
+      ->capture_default_str();
   cmd->add_option("--check-interior-occlusion", o->check_interior_occlusion,
                   "Also require the face's centroid and edge midpoints unoccluded (true/false)")
       ->capture_default_str();

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <memory>
 #include <numeric>
 
 #include <tbb/blocked_range.h>
@@ -31,6 +32,8 @@ void PriOptions::check() const {
                 std::to_string(max_views_per_face));
   if (threads < 0) throw Error("threads must be >= 0 (0 = all cores)");
   if (!(textureless_variance >= 0)) throw Error("textureless_variance must be >= 0");
+  if (!(edge_margin >= 0 && edge_margin <= 16))
+    throw Error("edge_margin must be in [0, 16] pixels");
   if (!(max_incidence_angle > 0 && max_incidence_angle <= 90))
     throw Error("max_incidence_angle must be in (0, 90] degrees");
   if (!(visibility.relative_eps >= 0 && visibility.relative_eps < 1))
@@ -78,7 +81,12 @@ double ncc_from_stats(const float* a, const PatchStats& sa, const float* b, cons
 struct FaceViews {
   std::vector<int> views;  // indices into the list of image views
   int samples_per_side = 0;
+  double shrink = 0;  // lattice contraction towards the centroid (edge_margin)
 };
+
+// The lattice is never contracted to less than half the face (faces a few
+// pixels wide keep their centre half).
+constexpr double kMaxShrink = 0.5;
 
 double projected_area(const Vec2& a, const Vec2& b, const Vec2& c) {
   return 0.5 * std::abs((b - a).x() * (c - a).y() - (b - a).y() * (c - a).x());
@@ -102,7 +110,7 @@ FaceViews select_views(const TriangleMesh& mesh, const std::vector<Vec3>& normal
   FaceViews out;
   struct Candidate {
     int view;
-    double angle, area, max_edge;
+    double angle, area, max_edge, inner;  // inner: distance (px) from the centroid to the nearest edge
   };
   std::vector<Candidate> candidates;
   const Vec3 centroid = mesh.face_centroid(f);
@@ -117,8 +125,10 @@ FaceViews select_views(const TriangleMesh& mesh, const std::vector<Vec3>& normal
     if (o.check_interior_occlusion && !interior_unoccluded(mesh, caster, f, centres[i], o, abs_eps))
       continue;
     const double max_edge = std::max({(p[1] - p[0]).norm(), (p[2] - p[1]).norm(), (p[0] - p[2]).norm()});
-    candidates.push_back({int(i), std::acos(std::clamp(cosine, -1.0, 1.0)),
-                          projected_area(p[0], p[1], p[2]), max_edge});
+    const double area = projected_area(p[0], p[1], p[2]);
+    // The centroid is a third of each height away from that edge.
+    candidates.push_back({int(i), std::acos(std::clamp(cosine, -1.0, 1.0)), area, max_edge,
+                          2.0 * area / (3.0 * max_edge)});
   }
   if (o.max_views_per_face > 0 && int(candidates.size()) > o.max_views_per_face) {
     // Smallest incidence angle first; ties by larger projected area, then by index.
@@ -134,7 +144,13 @@ FaceViews select_views(const TriangleMesh& mesh, const std::vector<Vec3>& normal
   for (const auto& c : candidates) {
     out.views.push_back(c.view);
     max_edge = std::max(max_edge, c.max_edge);
+    // Contraction that keeps the lattice edge_margin pixels inside the
+    // face's projection in this view (the bilinear footprint of a border
+    // sample must not reach beyond the face).
+    if (o.edge_margin > 0)
+      out.shrink = std::max(out.shrink, c.inner > 0 ? o.edge_margin / c.inner : 1.0);
   }
+  out.shrink = std::min(out.shrink, kMaxShrink);
   out.samples_per_side = o.samples_per_side > 0
                              ? o.samples_per_side
                              : std::clamp(int(std::ceil(max_edge)), 2, 32);
@@ -206,7 +222,8 @@ PriResult compute_pri(const Scene& scene, const PriOptions& options,
         floats += need;
         ++block_end;
       }
-      std::vector<float> samples(floats, 0.0f);
+      // Every slot is written by its view before it is read: no zero fill.
+      const std::unique_ptr<float[]> samples(new float[floats]);
       // Per view, the faces of the block that it sees and the slot of each.
       std::vector<std::vector<std::pair<std::size_t, int>>> by_view(cams.size());
       for (std::size_t f = block_begin; f < block_end; ++f)
@@ -234,23 +251,42 @@ PriResult compute_pri(const Scene& scene, const PriOptions& options,
               const Face& face = mesh.faces[f];
               const Vec3 &v0 = mesh.vertices[face[0]], &v1 = mesh.vertices[face[1]],
                          &v2 = mesh.vertices[face[2]];
-              const Vec3 h0 = KR * v0 + Kt, h1 = KR * v1 + Kt, h2 = KR * v2 + Kt;
-              std::size_t s = 0;
+              // The lattice, contracted towards the centroid by the face's
+              // edge-margin factor (the same 3-D points in every view).
+              const double keep = 1.0 - fv[f].shrink;
+              const Vec3 g = (v0 + v1 + v2) / 3.0;
+              const Vec3 w0 = g + keep * (v0 - g), w1 = g + keep * (v1 - g), w2 = g + keep * (v2 - g);
+              const Vec3 h0 = KR * w0 + Kt, h1 = KR * w1 + Kt, h2 = KR * w2 + Kt;
               bool ok = true;
-              for (int a = 0; a <= rs && ok; ++a)
-                for (int b = 0; b <= rs - a && ok; ++b, ++s) {
-                  const int c = rs - a - b;
-                  float* out = slot + s * channels;
-                  if (linear) {
-                    const Vec3 h = double(a) * h0 + double(b) * h1 + double(c) * h2;
-                    ok = h.z() > 0 && (channels == 1 ? plane.sample_gray(h.x() / h.z(), h.y() / h.z(), out)
-                                                     : plane.sample(h.x() / h.z(), h.y() / h.z(), out));
-                  } else {
-                    const Vec3 X = (a * v0 + b * v1 + c * v2) / double(rs);
-                    Vec2 px;
-                    ok = cam.project(X, &px) && plane.sample(px.x(), px.y(), out);
+              if (linear && channels == 1) {
+                // Lattice point (a, b, c) with a + b + c = rs: along a row of
+                // constant a, the homogeneous projection moves by h1 - h2.
+                const Vec3 step = h1 - h2;
+                float* out = slot;
+                for (int a = 0; a <= rs && ok; ++a) {
+                  Vec3 h = double(a) * h0 + double(rs - a) * h2;
+                  for (int b = 0; b <= rs - a; ++b, ++out, h += step) {
+                    if (!(h.z() > 0)) { ok = false; break; }
+                    const double inv = 1.0 / h.z();
+                    if (!plane.sample_gray(h.x() * inv, h.y() * inv, out)) { ok = false; break; }
                   }
                 }
+              } else {
+                std::size_t s = 0;
+                for (int a = 0; a <= rs && ok; ++a)
+                  for (int b = 0; b <= rs - a && ok; ++b, ++s) {
+                    const int c = rs - a - b;
+                    float* out = slot + s * channels;
+                    if (linear) {
+                      const Vec3 h = double(a) * h0 + double(b) * h1 + double(c) * h2;
+                      ok = h.z() > 0 && plane.sample(h.x() / h.z(), h.y() / h.z(), out);
+                    } else {
+                      const Vec3 X = (a * w0 + b * w1 + c * w2) / double(rs);
+                      Vec2 px;
+                      ok = cam.project(X, &px) && plane.sample(px.x(), px.y(), out);
+                    }
+                  }
+              }
               if (!ok) slot[0] = std::numeric_limits<float>::quiet_NaN();  // view unusable here
             }
           });

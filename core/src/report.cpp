@@ -210,6 +210,7 @@ ReportFiles write_report(const ReportInputs& in, const std::string& folder,
     << "<tr><td class=l>samples_per_side</td><td class=l>" << in.pri_options.samples_per_side << "</td></tr>"
     << "<tr><td class=l>max_views_per_face</td><td class=l>" << in.pri_options.max_views_per_face << "</td></tr>"
     << "<tr><td class=l>max_incidence_angle</td><td class=l>" << in.pri_options.max_incidence_angle << "</td></tr>"
+    << "<tr><td class=l>edge_margin</td><td class=l>" << in.pri_options.edge_margin << "</td></tr>"
     << "<tr><td class=l>check_interior_occlusion</td><td class=l>" << (in.pri_options.check_interior_occlusion ? "true" : "false") << "</td></tr>"
     << "</table>\n<table><tr><th class=l>suggestion option</th><th class=l>value</th></tr>";
   const SuggestOptions& so = in.suggest_options;

@@ -34,6 +34,7 @@ vtkMeshNBVPRIFilter::vtkMeshNBVPRIFilter()
   this->SamplesPerSide = defaults.samples_per_side;
   this->MaxViewsPerFace = defaults.max_views_per_face;
   this->MaxIncidenceAngle = defaults.max_incidence_angle;
+  this->EdgeMargin = defaults.edge_margin;
   this->CheckInteriorOcclusion = defaults.check_interior_occlusion;
   this->Color = defaults.color;
   this->TexturelessVariance = defaults.textureless_variance;
@@ -114,6 +115,7 @@ int vtkMeshNBVPRIFilter::RequestData(
     options.samples_per_side = this->SamplesPerSide;
     options.max_views_per_face = this->MaxViewsPerFace;
     options.max_incidence_angle = this->MaxIncidenceAngle;
+    options.edge_margin = this->EdgeMargin;
     options.check_interior_occlusion = this->CheckInteriorOcclusion != 0;
     options.color = this->Color != 0;
     options.textureless_variance = this->TexturelessVariance;

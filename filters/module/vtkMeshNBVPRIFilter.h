@@ -94,6 +94,15 @@ public:
 
   ///@{
   /**
+   * Keep the sampling lattice this many pixels inside each face in every
+   * view (`edge_margin`, default 0.5; 0 = the whole face).
+   */
+  vtkSetClampMacro(EdgeMargin, double, 0.0, 16.0);
+  vtkGetMacro(EdgeMargin, double);
+  ///@}
+
+  ///@{
+  /**
    * Also require a face's centroid and edge midpoints to be unoccluded
    * (`check_interior_occlusion`, default on).
    */
@@ -157,6 +166,7 @@ protected:
   int SamplesPerSide;
   int MaxViewsPerFace;
   double MaxIncidenceAngle;
+  double EdgeMargin;
   vtkTypeBool CheckInteriorOcclusion;
   vtkTypeBool Color;
   double TexturelessVariance;

@@ -53,20 +53,26 @@ double roc_auc(const std::vector<double>& score, const std::vector<bool>& positi
 }
 
 struct Quality {
-  double auc = 0, rho = 0;
-  std::size_t observed = 0, positives = 0;
+  double auc = 0, rho = 0, rho_region = 0;
+  std::size_t observed = 0, positives = 0, region = 0;
 };
 
 Quality evaluate(const PriResult& r, const std::vector<float>& gt_error, double threshold) {
-  std::vector<double> score, error;
+  Quality q;
+  std::vector<double> score, error, rscore, rerror;
   std::vector<bool> positive;
   for (std::size_t f = 0; f < r.pri.size(); ++f)
     if (r.status[f] == FaceStatus::Observed) {
       score.push_back(r.pri[f]);
       error.push_back(gt_error[f]);
       positive.push_back(gt_error[f] > threshold);
+      if (gt_error[f] > 1e-3 * threshold) {
+        rscore.push_back(r.pri[f]);
+        rerror.push_back(gt_error[f]);
+      }
     }
-  Quality q;
+  q.region = rscore.size();
+  q.rho_region = spearman(rscore, rerror);
   q.observed = score.size();
   q.positives = std::size_t(std::count(positive.begin(), positive.end(), true));
   q.auc = roc_auc(score, positive);
@@ -91,17 +97,23 @@ synth::SynthProject project(const std::string& scene, const std::string& degrada
   d.center = scene == "building" ? Vec3(0, -3.45, 5) : Vec3(16, 0, 4);
   o.degradations = {d};
   o.overwrite = true;
-  return synth::write_synthetic_project(o, test::temp_dir("pri_" + scene + "_" + degradation.substr(0, 4)));
+  return synth::write_synthetic_project(o, test::temp_dir("pri_" + scene + "_" + degradation.substr(0, 4) + std::to_string(degradation.size())));
 }
 
 }  // namespace
 
-// Floors: (AUC SSD, AUC NCC, Spearman SSD, Spearman NCC). The issue's
-// targets are AUC >= 0.85 and Spearman >= 0.5; the floors below are what
-// this implementation reaches with margin (docs/pri.md has the measured
-// table), so that a regression fails the test.
+// What each case must reach, for SSD and NCC. The targets are
+// AUC >= 0.85 and Spearman >= 0.5. Spearman is asserted over the faces of
+// the degraded region (ground-truth error > 0): over all faces the
+// undegraded majority ties at zero error and caps it (docs/pri.md). The
+// all-faces Spearman floors, and the floors of the whole-mesh noise cases
+// (no undegraded face; errors of 0-4 px), are what this implementation
+// reaches with a margin (docs/pri.md has the measured table), so that a
+// regression fails the test.
 struct Floors {
-  double auc_ssd, auc_ncc, rho_ssd, rho_ncc;
+  double auc_ssd, auc_ncc;
+  double rho_region_ssd, rho_region_ncc;
+  double rho_ssd, rho_ncc;
 };
 class PriFindsDegradation
     : public ::testing::TestWithParam<std::tuple<std::string, std::string, Floors>> {};
@@ -118,24 +130,33 @@ TEST_P(PriFindsDegradation, AucAndSpearman) {
     const PriResult r = compute_pri(p.scene, o);
     const Quality q = evaluate(r, p.gt_error, threshold);
     std::cout << scene << " " << degradation << " " << measure_name(m) << ": AUC " << q.auc
-              << ", Spearman " << q.rho << " (" << q.observed << " observed faces, " << q.positives
-              << " with error > " << threshold << " m)\n";
+              << ", Spearman over the degraded region " << q.rho_region << " (" << q.region
+              << " faces), over all faces " << q.rho << " (" << q.observed << " observed faces, "
+              << q.positives << " with error > " << threshold << " m)\n";
+    const bool ssd = m == Measure::SSD;
     ASSERT_GT(q.positives, 100u);
-    EXPECT_GE(q.auc, m == Measure::SSD ? floors.auc_ssd : floors.auc_ncc) << measure_name(m);
-    EXPECT_GE(q.rho, m == Measure::SSD ? floors.rho_ssd : floors.rho_ncc) << measure_name(m);
+    EXPECT_GE(q.auc, ssd ? floors.auc_ssd : floors.auc_ncc) << measure_name(m);
+    EXPECT_GE(q.rho_region, ssd ? floors.rho_region_ssd : floors.rho_region_ncc) << measure_name(m);
+    EXPECT_GE(q.rho, ssd ? floors.rho_ssd : floors.rho_ncc) << measure_name(m);
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Synthetic, PriFindsDegradation,
-                         ::testing::Values(
-                             std::make_tuple("building", "noise:0.01:0.3", Floors{0.72, 0.88, 0.3, 0.4}),
-                             std::make_tuple("building", "dent:0.03:0.2", Floors{0.9, 0.97, 0.33, 0.38}),
-                             std::make_tuple("fortress", "noise:0.01:0.3", Floors{0.8, 0.83, 0.38, 0.43}),
-                             std::make_tuple("fortress", "bump:0.02:0.2", Floors{0.92, 0.95, 0.15, 0.24})),
-                         [](const auto& info) {
-                           const std::string& d = std::get<1>(info.param);
-                           return std::get<0>(info.param) + "_" + d.substr(0, d.find(':'));
-                         });
+INSTANTIATE_TEST_SUITE_P(
+    Synthetic, PriFindsDegradation,
+    ::testing::Values(
+        // Local degradations centred on a facade: the targets.
+        std::make_tuple("building", "noise:0.01:0.3", Floors{0.85, 0.85, 0.5, 0.5, 0.4, 0.48}),
+        std::make_tuple("building", "dent:0.03:0.2", Floors{0.85, 0.85, 0.5, 0.5, 0.35, 0.37}),
+        std::make_tuple("fortress", "noise:0.01:0.3", Floors{0.85, 0.85, 0.5, 0.5, 0.42, 0.45}),
+        std::make_tuple("fortress", "bump:0.02:0.2", Floors{0.85, 0.85, 0.5, 0.5, 0.13, 0.22}),
+        // Noise over the whole mesh (radius 3 diagonals): measured floors.
+        std::make_tuple("building", "noise:0.005:3", Floors{0.6, 0.65, 0.24, 0.38, 0.24, 0.38}),
+        std::make_tuple("fortress", "noise:0.005:3", Floors{0.6, 0.65, 0.25, 0.34, 0.25, 0.34})),
+    [](const auto& info) {
+      const std::string& d = std::get<1>(info.param);
+      const bool whole = d.size() >= 2 && d.compare(d.size() - 2, 2, ":3") == 0;
+      return std::get<0>(info.param) + "_" + d.substr(0, d.find(':')) + (whole ? "_whole" : "");
+    });
 
 TEST(PriQuality, TruthIsNearZero) {
   synth::SynthProject p = project("building", "dent:0.03:0.2");

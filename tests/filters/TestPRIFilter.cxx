@@ -101,12 +101,12 @@ int TestPRIFilter(int argc, char* argv[])
         o->threads = 1;
       },
       nullptr },
-    { "ncc, textureless variance 1e-3", true,
+    { "ncc, textureless variance 3e-4", true,
       [](vtkMeshNBVPRIFilter* f, meshnbv::PriOptions* o) {
         f->SetMeasure(vtkMeshNBVPRIFilter::NCC);
-        f->SetTexturelessVariance(1e-3);
+        f->SetTexturelessVariance(3e-4);
         o->measure = meshnbv::Measure::NCC;
-        o->textureless_variance = 1e-3;
+        o->textureless_variance = 3e-4;
       },
       nullptr },
   };

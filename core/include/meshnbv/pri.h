@@ -43,6 +43,13 @@ struct PriOptions {
   // visibility alone misses partial occlusion (a face behind a thin
   // parapet, in a concave corner). False = the SPEC's vertex rule only.
   bool check_interior_occlusion = true;
+  // Keep the lattice this many pixels inside the face's projection in
+  // every view, by contracting it towards the centroid (at most to half
+  // size) [deviation, docs/deviations.md]: bilinear samples on a face's
+  // border read the pixels beyond it -- the next face across a crease, the
+  // background across a silhouette -- which differ between views even for
+  // a perfect mesh. 0 = the SPEC's lattice over the whole face.
+  double edge_margin = 0.5;  // pixels
   VisibilityOptions visibility;
 
   void check() const;  // throws Error for values out of range

@@ -50,6 +50,10 @@ const ParameterHelp kPriParameters[] = {
     {"max_incidence_angle", "Max incidence angle", "degrees; more grazing views do not count",
      "Degrees. A view whose direction makes a larger angle with the face normal does not count "
      "as seeing the face (grazing views give slivers). 90 = the plain back-face rule."},
+    {"edge_margin", "Edge margin", "pixels the samples stay inside each face",
+     "Pixels. The sampling lattice is contracted towards the face's centroid so that it stays "
+     "this far inside the face in every view: samples on the border would read the pixels "
+     "beyond it (the next face, the background). 0 = sample the whole face."},
     {"check_interior_occlusion", "Check interior occlusion",
      "centroid and edge midpoints must be unoccluded too",
      "Besides its three vertices, the face's centroid and edge midpoints must be unoccluded in a "
@@ -182,6 +186,7 @@ PriOptions pri_options(const RichParameterList& par) {
   o.samples_per_side = par.getInt("samples_per_side");
   o.max_views_per_face = par.getInt("max_views_per_face");
   o.max_incidence_angle = decimal(par.getFloat("max_incidence_angle"));
+  o.edge_margin = decimal(par.getFloat("edge_margin"));
   o.check_interior_occlusion = par.getBool("check_interior_occlusion");
   o.color = par.getBool("color");
   o.threads = par.getInt("threads");
@@ -330,6 +335,7 @@ void FilterMeshNbvPlugin::initParameterSet(QAction* action, MeshDocument&, RichP
                            MESHNBV_TEXT(t, "max_views_per_face")));
       par.addParam(RichFloat("max_incidence_angle", float(pri.max_incidence_angle),
                              MESHNBV_TEXT(t, "max_incidence_angle")));
+      par.addParam(RichFloat("edge_margin", float(pri.edge_margin), MESHNBV_TEXT(t, "edge_margin")));
       par.addParam(RichBool("check_interior_occlusion", pri.check_interior_occlusion,
                             MESHNBV_TEXT(t, "check_interior_occlusion")));
       par.addParam(RichBool("color", pri.color, MESHNBV_TEXT(t, "color")));
