@@ -1,4 +1,5 @@
 #include "meshnbv/planner.h"
+#include "enum_names.h"
 
 #include <algorithm>
 #include <chrono>
@@ -13,20 +14,18 @@
 
 namespace meshnbv {
 
+constexpr detail::EnumTable<CandidateMode, 3> kCandidateModes = {
+    {"given", CandidateMode::Given},
+    {"sampled", CandidateMode::Sampled},
+    {"refined", CandidateMode::Refined},
+};
+
 CandidateMode parse_candidate_mode(const std::string& name) {
-  if (name == "given") return CandidateMode::Given;
-  if (name == "sampled") return CandidateMode::Sampled;
-  if (name == "refined") return CandidateMode::Refined;
-  throw Error("unknown candidate mode '" + name + "' (expected given, sampled or refined)");
+  return detail::parse_enum(name, kCandidateModes, "candidate mode");
 }
 
 std::string candidate_mode_name(CandidateMode mode) {
-  switch (mode) {
-    case CandidateMode::Given: return "given";
-    case CandidateMode::Sampled: return "sampled";
-    case CandidateMode::Refined: return "refined";
-  }
-  return "sampled";
+  return detail::enum_name(mode, kCandidateModes);
 }
 
 void SuggestOptions::check() const {

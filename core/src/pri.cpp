@@ -1,4 +1,5 @@
 #include "meshnbv/pri.h"
+#include "enum_names.h"
 
 #include <algorithm>
 #include <chrono>
@@ -15,13 +16,18 @@
 
 namespace meshnbv {
 
+constexpr detail::EnumTable<Measure, 2> kMeasures = {
+    {"ssd", Measure::SSD},
+    {"ncc", Measure::NCC},
+};
+
 Measure parse_measure(const std::string& name) {
-  if (name == "ssd") return Measure::SSD;
-  if (name == "ncc") return Measure::NCC;
-  throw Error("unknown measure '" + name + "' (expected ssd or ncc)");
+  return detail::parse_enum(name, kMeasures, "measure");
 }
 
-std::string measure_name(Measure measure) { return measure == Measure::SSD ? "ssd" : "ncc"; }
+std::string measure_name(Measure measure) {
+  return detail::enum_name(measure, kMeasures);
+}
 
 void PriOptions::check() const {
   if (samples_per_side < 0 || samples_per_side > 64)

@@ -1,5 +1,6 @@
 // The incremental view-selection loop of the paper's experiment.
 #include "meshnbv/eval/loop.h"
+#include "../enum_names.h"
 
 #include <algorithm>
 #include <chrono>
@@ -29,14 +30,17 @@ namespace fs = std::filesystem;
 
 namespace meshnbv::eval {
 
+constexpr detail::EnumTable<MesherKind, 2> kMeshers = {
+    {"delaunay", MesherKind::Delaunay},
+    {"poisson", MesherKind::Poisson},
+};
+
 MesherKind parse_mesher(const std::string& name) {
-  if (name == "delaunay") return MesherKind::Delaunay;
-  if (name == "poisson") return MesherKind::Poisson;
-  throw Error("unknown mesher '" + name + "' (expected delaunay or poisson)");
+  return detail::parse_enum(name, kMeshers, "mesher");
 }
 
 std::string mesher_name(MesherKind kind) {
-  return kind == MesherKind::Delaunay ? "delaunay" : "poisson";
+  return detail::enum_name(kind, kMeshers);
 }
 
 void LoopOptions::check() const {

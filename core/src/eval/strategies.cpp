@@ -1,5 +1,6 @@
 // Baseline view-selection strategies of the incremental loop.
 #include "meshnbv/eval/strategies.h"
+#include "../enum_names.h"
 
 #include <Eigen/Dense>
 #include <algorithm>
@@ -11,22 +12,19 @@
 
 namespace meshnbv::eval {
 
+constexpr detail::EnumTable<Strategy, 4> kStrategies = {
+    {"nbv", Strategy::Nbv},
+    {"uniform", Strategy::Uniform},
+    {"random", Strategy::Random},
+    {"coverage", Strategy::Coverage},
+};
+
 Strategy parse_strategy(const std::string& name) {
-  if (name == "nbv") return Strategy::Nbv;
-  if (name == "uniform") return Strategy::Uniform;
-  if (name == "random") return Strategy::Random;
-  if (name == "coverage") return Strategy::Coverage;
-  throw Error("unknown strategy '" + name + "' (expected nbv, uniform, random or coverage)");
+  return detail::parse_enum(name, kStrategies, "strategy");
 }
 
 std::string strategy_name(Strategy strategy) {
-  switch (strategy) {
-    case Strategy::Nbv: return "nbv";
-    case Strategy::Uniform: return "uniform";
-    case Strategy::Random: return "random";
-    case Strategy::Coverage: return "coverage";
-  }
-  return "?";
+  return detail::enum_name(strategy, kStrategies);
 }
 
 Vec3 convergence_point(const std::vector<PinholeCamera>& cameras) {

@@ -1,6 +1,7 @@
 // Delaunay + visibility + graph cut surface reconstruction (Labatut et al.
 // 2007). One of the few translation units with CGAL (slow to compile).
 #include "meshnbv/eval/visibility_mesher.h"
+#include "../enum_names.h"
 
 #include <algorithm>
 #include <chrono>
@@ -28,32 +29,32 @@
 
 namespace meshnbv::eval {
 
+constexpr detail::EnumTable<Labelling, 2> kLabellings = {
+    {"graphcut", Labelling::GraphCut},
+    {"vote", Labelling::Vote},
+};
+
 Labelling parse_labelling(const std::string& name) {
-  if (name == "graphcut") return Labelling::GraphCut;
-  if (name == "vote") return Labelling::Vote;
-  throw Error("unknown labelling '" + name + "' (expected graphcut or vote)");
+  return detail::parse_enum(name, kLabellings, "labelling");
 }
 
 std::string labelling_name(Labelling labelling) {
-  return labelling == Labelling::GraphCut ? "graphcut" : "vote";
+  return detail::enum_name(labelling, kLabellings);
 }
 
+constexpr detail::EnumTable<FacetSupport, 4> kFacetSupports = {
+    {"all", FacetSupport::All},
+    {"any", FacetSupport::Any},
+    {"edges", FacetSupport::Edges},
+    {"common", FacetSupport::Common},
+};
+
 FacetSupport parse_facet_support(const std::string& name) {
-  if (name == "all") return FacetSupport::All;
-  if (name == "any") return FacetSupport::Any;
-  if (name == "edges") return FacetSupport::Edges;
-  if (name == "common") return FacetSupport::Common;
-  throw Error("unknown facet support '" + name + "' (expected all, any, edges or common)");
+  return detail::parse_enum(name, kFacetSupports, "facet support");
 }
 
 std::string facet_support_name(FacetSupport support) {
-  switch (support) {
-    case FacetSupport::All: return "all";
-    case FacetSupport::Any: return "any";
-    case FacetSupport::Edges: return "edges";
-    case FacetSupport::Common: return "common";
-  }
-  return "?";
+  return detail::enum_name(support, kFacetSupports);
 }
 
 void VisibilityMesherOptions::check() const {

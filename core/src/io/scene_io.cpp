@@ -1,4 +1,5 @@
 #include "meshnbv/io/scene_io.h"
+#include "../enum_names.h"
 
 #include <filesystem>
 
@@ -10,27 +11,21 @@ namespace fs = std::filesystem;
 
 namespace meshnbv::io {
 
+constexpr detail::EnumTable<SceneFormat, 6> kSceneFormats = {
+    {"auto", SceneFormat::Auto},
+    {"mlp", SceneFormat::Mlp},
+    {"json", SceneFormat::Json},
+    {"middlebury", SceneFormat::Middlebury},
+    {"colmap", SceneFormat::Colmap},
+    {"bundler", SceneFormat::Bundler},
+};
+
 SceneFormat parse_scene_format(const std::string& name) {
-  if (name == "auto") return SceneFormat::Auto;
-  if (name == "mlp") return SceneFormat::Mlp;
-  if (name == "json") return SceneFormat::Json;
-  if (name == "middlebury") return SceneFormat::Middlebury;
-  if (name == "colmap") return SceneFormat::Colmap;
-  if (name == "bundler") return SceneFormat::Bundler;
-  throw Error("unknown scene format '" + name +
-              "' (expected auto, mlp, json, middlebury, colmap or bundler)");
+  return detail::parse_enum(name, kSceneFormats, "scene format");
 }
 
 std::string scene_format_name(SceneFormat format) {
-  switch (format) {
-    case SceneFormat::Auto: return "auto";
-    case SceneFormat::Mlp: return "mlp";
-    case SceneFormat::Json: return "json";
-    case SceneFormat::Middlebury: return "middlebury";
-    case SceneFormat::Colmap: return "colmap";
-    case SceneFormat::Bundler: return "bundler";
-  }
-  return "auto";
+  return detail::enum_name(format, kSceneFormats);
 }
 
 namespace {
