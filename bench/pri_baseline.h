@@ -55,9 +55,7 @@ inline bool interior_unoccluded(const TriangleMesh& mesh, const RayCaster& caste
   const Face& face = mesh.faces[f];
   const Vec3 &a = mesh.vertices[face[0]], &b = mesh.vertices[face[1]], &d = mesh.vertices[face[2]];
   const Vec3 points[4] = {(a + b + d) / 3.0, 0.5 * (a + b), 0.5 * (b + d), 0.5 * (d + a)};
-  for (const Vec3& p : points)
-    if (!caster.segment_clear(c, p, o.visibility.relative_eps, abs_eps)) return false;
-  return true;
+  return caster.segments_clear4(c, points, o.visibility.relative_eps, abs_eps);
 }
 
 inline void select_face(const TriangleMesh& mesh, const std::vector<Vec3>& normals,

@@ -114,4 +114,40 @@ bool RayCaster::segment_clear(const Vec3& from, const Vec3& to, double relative_
   return !occluded(from, d, 0.0, t_max);
 }
 
+bool RayCaster::segments_clear4(const Vec3& from, const Vec3 (&to)[4], double relative_eps,
+                                double absolute_eps) const {
+  alignas(16) int valid[4];
+  alignas(16) RTCRay4 rays;
+  const Vec3 o = from - offset_;
+  bool any = false;
+  for (int k = 0; k < 4; ++k) {
+    const Vec3 d = to[k] - from;
+    const double length = d.norm();
+    const double t_max = (1.0 - relative_eps) * length - absolute_eps;
+    valid[k] = t_max > 0 && length > 0 ? -1 : 0;
+    any = any || valid[k];
+    const Vec3 u = length > 0 ? Vec3(d / length) : Vec3(0, 0, 1);
+    rays.org_x[k] = float(o.x());
+    rays.org_y[k] = float(o.y());
+    rays.org_z[k] = float(o.z());
+    rays.dir_x[k] = float(u.x());
+    rays.dir_y[k] = float(u.y());
+    rays.dir_z[k] = float(u.z());
+    rays.tnear[k] = 0.0f;
+    rays.tfar[k] = valid[k] ? float(t_max) : 0.0f;
+    rays.time[k] = 0.0f;
+    rays.mask[k] = 0xFFFFFFFFu;
+    rays.id[k] = unsigned(k);
+    rays.flags[k] = 0;
+  }
+  if (!any) return true;
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+  rtcOccluded4(valid, impl_->scene, &context, &rays);
+  for (int k = 0; k < 4; ++k)
+    if (valid[k] && rays.tfar[k] < 0.0f) return false;
+  return true;
+}
+
 }  // namespace meshnbv

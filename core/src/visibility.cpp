@@ -25,8 +25,10 @@ VertexVisibility::VertexVisibility(const TriangleMesh& mesh, const RayCaster& ca
     const std::size_t end = std::min(V, begin + chunk);
     tbb::parallel_for(tbb::blocked_range<std::size_t>(begin, end),
                       [&](const tbb::blocked_range<std::size_t>& r) {
-                        for (std::size_t v = r.begin(); v < r.end(); ++v)
-                          for (std::size_t i = 0; i < num_views_; ++i)
+                        // View by view: consecutive rays share an origin and
+                        // walk nearby parts of the BVH.
+                        for (std::size_t i = 0; i < num_views_; ++i)
+                          for (std::size_t v = r.begin(); v < r.end(); ++v)
                             bits_[v * num_views_ + i] = point_visible(
                                 caster, cameras[i], mesh.vertices[v], options.relative_eps, abs_eps);
                       });

@@ -1,6 +1,7 @@
 // Renderer: geometry lands where the camera model says, output is
 // deterministic, and the truth is photo-consistent across views.
 #include <cmath>
+#include <random>
 
 #include "meshnbv/error.h"
 #include "meshnbv/raycaster.h"
@@ -142,6 +143,38 @@ TEST(RayCaster, HitsAndOcclusion) {
   // segment just before it.
   EXPECT_TRUE(caster.segment_clear(Vec3(0.3, 0.3, 5), Vec3(0.3, 0.3, 1), 1e-4, 1e-6));
   EXPECT_FALSE(caster.segment_clear(Vec3(0.3, 0.3, 5), Vec3(0.3, 0.3, -1), 1e-4, 1e-6));
+}
+
+TEST(RayCaster, PacketOfFourSegmentsAgreesWithSingleSegments) {
+  // A city block of boxes, segments from cameras around it to random points
+  // on its surface and off it: the packet says clear exactly when all four
+  // single segments are.
+  TriangleMesh m = synth::make_box(Vec3(-1, -1, 0), Vec3(1, 1, 2), 0.25, 0);
+  m.append(synth::make_box(Vec3(1.5, -0.5, 0), Vec3(2.5, 0.5, 3), 0.25, 0));
+  const RayCaster caster(m);
+  std::mt19937 rng(5);
+  std::uniform_int_distribution<std::size_t> face(0, m.num_faces() - 1);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  int blocked = 0, clear = 0;
+  for (int trial = 0; trial < 2000; ++trial) {
+    const double angle = 2 * M_PI * u(rng);
+    const Vec3 eye(6 * std::cos(angle), 6 * std::sin(angle), 1 + 4 * u(rng));
+    Vec3 to[4];
+    bool singles = true;
+    const std::size_t f = face(rng);
+    for (int k = 0; k < 4; ++k) {
+      const double a = u(rng), b = u(rng) * (1 - a);
+      to[k] = a * m.vertices[m.faces[f][0]] + b * m.vertices[m.faces[f][1]] +
+              (1 - a - b) * m.vertices[m.faces[f][2]];
+      if (trial % 7 == 0 && k == 3) to[k] = eye;  // a degenerate segment: clear
+      singles = singles && caster.segment_clear(eye, to[k], 1e-4, 1e-6);
+    }
+    const bool packet = caster.segments_clear4(eye, to, 1e-4, 1e-6);
+    ASSERT_EQ(packet, singles) << "trial " << trial;
+    (packet ? clear : blocked) += 1;
+  }
+  EXPECT_GT(clear, 200);
+  EXPECT_GT(blocked, 200);
 }
 
 TEST(RayCaster, FarFromOriginKeepsPrecision) {

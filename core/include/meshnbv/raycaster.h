@@ -33,6 +33,10 @@ class RayCaster {
   // (1 - relative_eps) of its length minus `absolute_eps` (SPEC section 2).
   bool segment_clear(const Vec3& from, const Vec3& to, double relative_eps,
                      double absolute_eps) const;
+  // segment_clear for the four segments from `from` to `to[0..3]`, traced
+  // together as one Embree packet (coherent rays from one camera centre).
+  bool segments_clear4(const Vec3& from, const Vec3 (&to)[4], double relative_eps,
+                       double absolute_eps) const;
 
   const Vec3& offset() const { return offset_; }
 
