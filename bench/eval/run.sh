@@ -4,6 +4,7 @@
 #
 #   bench/eval/run.sh [BUILD_DIR]        (default: build)
 #   ONLY=temple|building|fortress bench/eval/run.sh   one dataset
+#   RUNS='nbv.*' bench/eval/run.sh       only the runs whose name matches (bash regex)
 #
 # Results (committed): bench/results/eval/<dataset>/<run>/{loop.json,
 # steps.csv, console.txt, meshes/ (last step, PLY + two pictures)},
@@ -20,6 +21,7 @@ SHARED=${MESHNBV_SHARED_DATA:-$ROOT/../shared/data}
 WORK=${MESHNBV_EVAL_WORK:-$ROOT/../eval-work}
 RESULTS=$ROOT/bench/results/eval
 ONLY=${ONLY:-all}
+RUNS=${RUNS:-.*}
 SEEDS="1 2 3"
 mkdir -p "$WORK" "$RESULTS"
 [ -x "$MESHNBV" ] || { echo "no $MESHNBV: build first" >&2; exit 1; }
@@ -28,6 +30,7 @@ mkdir -p "$WORK" "$RESULTS"
 run() {
   local dataset=$1 name=$2; shift 2
   local out=$RESULTS/$dataset/$name
+  [[ $name =~ ^($RUNS)$ ]] || return 0
   echo "== $dataset / $name"
   mkdir -p "$RESULTS/$dataset"
   "$MESHNBV" loop "$@" --out "$out" --overwrite --save-meshes last --snapshots --quiet | tee "$WORK/console.txt"
