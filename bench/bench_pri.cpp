@@ -5,8 +5,8 @@
 //                                and samples_per_side = spp (0 = automatic).
 //                                The benchmark time is the sampling +
 //                                comparison phase: each iteration times the
-//                                view selection alone (a copy of the core's,
-//                                pri_baseline.h) and then compute_pri, and
+//                                view selection alone (select_pri_views, the
+//                                first phase of compute_pri) and then compute_pri, and
 //                                reports the difference. end_to_end_s and
 //                                select_s give both parts; e2e_* rates are
 //                                over the whole compute_pri call.
@@ -123,15 +123,15 @@ struct Fixture {
     o.samples_per_side = kBaselineR;
     o.edge_margin = 0;  // the baseline warps the whole triangle: compare like with like
     PerViews p;
-    p.selection = bench::select_views_like_core(scene(), o);
+    p.selection = select_pri_views(scene(), o);
     const PriResult core = compute_pri(scene(), o);
     std::size_t mismatches = 0;
     for (std::size_t f = 0; f < core.pri_views.size(); ++f)
-      mismatches += std::size_t(core.pri_views[f]) != p.selection.views[f].size();
+      mismatches += std::size_t(core.pri_views[f]) != p.selection.faces[f].views.size();
     if (mismatches) {
       std::fprintf(stderr,
-                   "bench_pri: the selection copy disagrees with compute_pri on %zu faces; "
-                   "update pri_baseline.h from core/src/pri.cpp\n",
+                   "bench_pri: select_pri_views and compute_pri's pri_views disagree on %zu "
+                   "faces\n",
                    mismatches);
       std::exit(1);
     }
@@ -149,10 +149,10 @@ Fixture& fixture() {
 double samples_of(const bench::Selection& s, int r_fixed, const std::vector<std::size_t>* faces) {
   double n = 0;
   auto add = [&](std::size_t f) {
-    n += lattice(r_fixed > 0 ? r_fixed : s.samples_per_side[f]) * double(s.views[f].size());
+    n += lattice(r_fixed > 0 ? r_fixed : s.faces[f].samples_per_side) * double(s.faces[f].views.size());
   };
   if (faces) for (std::size_t f : *faces) add(f);
-  else for (std::size_t f = 0; f < s.views.size(); ++f) add(f);
+  else for (std::size_t f = 0; f < s.faces.size(); ++f) add(f);
   return n;
 }
 
@@ -165,14 +165,14 @@ static void BM_Pri(benchmark::State& state) {
   o.threads = int(state.range(0));
   o.max_views_per_face = int(state.range(1));
   o.samples_per_side = int(state.range(2));
-  (void)fx.views(o.max_views_per_face);  // checks the selection copy against compute_pri
+  (void)fx.views(o.max_views_per_face);  // checks select_pri_views against compute_pri
   const double F = double(fx.scene().mesh.num_faces());
   const bool process = o.threads > 1;
   double select = 0, total = 0, samples = 0, cpu = 0;
   std::size_t observed = 0;
   for (auto _ : state) {
     const double c0 = cpu_s(process), t0 = now_s();
-    const bench::Selection s = bench::select_views_like_core(fx.scene(), o);
+    const bench::Selection s = select_pri_views(fx.scene(), o);
     const double c1 = cpu_s(process), t1 = now_s();
     const PriResult r = compute_pri(fx.scene(), o);
     const double c2 = cpu_s(process), t2 = now_s();

@@ -83,13 +83,6 @@ double ncc_from_stats(const float* a, const PatchStats& sa, const float* b, cons
   return (1.0 - rho) / 2.0;
 }
 
-// The views that see a face, in the order they will be sampled.
-struct FaceViews {
-  std::vector<int> views;  // indices into the list of image views
-  int samples_per_side = 0;
-  double shrink = 0;  // lattice contraction towards the centroid (edge_margin)
-};
-
 // The lattice is never contracted to less than half the face (faces a few
 // pixels wide keep their centre half).
 constexpr double kMaxShrink = 0.5;
@@ -107,11 +100,11 @@ bool interior_unoccluded(const TriangleMesh& mesh, const RayCaster& caster, std:
   return caster.segments_clear4(c, points, o.visibility.relative_eps, abs_eps);
 }
 
-FaceViews select_views(const TriangleMesh& mesh, const std::vector<Vec3>& normals,
+PriFaceViews select_views(const TriangleMesh& mesh, const std::vector<Vec3>& normals,
                        const VertexVisibility& vis, const RayCaster& caster,
                        const std::vector<PinholeCamera>& cams, const std::vector<Vec3>& centres,
                        std::size_t f, const PriOptions& o, double abs_eps) {
-  FaceViews out;
+  PriFaceViews out;
   struct Candidate {
     int view;
     double angle, area, max_edge, inner;  // inner: distance (px) from the centroid to the nearest edge
@@ -169,26 +162,49 @@ double ncc_error(const float* a, const float* b, std::size_t n, double min_varia
   return ncc_from_stats(a, sa, b, sb, n);
 }
 
-PriResult compute_pri(const Scene& scene, const PriOptions& options,
-                      const ProgressCallback& progress) {
+PriViewSelection select_pri_views(const Scene& scene, const PriOptions& options,
+                                  const ProgressCallback& progress) {
   options.check();
-  const auto start = std::chrono::steady_clock::now();
   const TriangleMesh& mesh = scene.mesh;
   mesh.validate(scene.mesh_path);
   if (mesh.empty()) throw Error("the mesh has no faces: nothing to compute PRI on");
-  std::vector<std::size_t> image_views;
+  PriViewSelection s;
   for (std::size_t i = 0; i < scene.views.size(); ++i)
-    if (scene.views[i].has_image() && scene.views[i].used) image_views.push_back(i);
-  if (image_views.size() < 2)
+    if (scene.views[i].has_image() && scene.views[i].used) s.image_views.push_back(i);
+  if (s.image_views.size() < 2)
     throw Error("PRI needs at least 2 views with images; the scene has " +
-                std::to_string(image_views.size()));
-  std::vector<PinholeCamera> cams;
+                std::to_string(s.image_views.size()));
   std::vector<Vec3> centres;
-  for (std::size_t i : image_views) {
+  for (std::size_t i : s.image_views) {
     scene.views[i].camera.check("view '" + scene.views[i].label + "'");
-    cams.push_back(scene.views[i].camera);
-    centres.push_back(cams.back().center());
+    s.cameras.push_back(scene.views[i].camera);
+    centres.push_back(s.cameras.back().center());
   }
+  const std::size_t F = mesh.num_faces();
+  s.faces.resize(F);
+  const int threads = options.threads > 0 ? options.threads : tbb::this_task_arena::max_concurrency();
+  tbb::task_arena arena(threads);
+  arena.execute([&] {
+    const RayCaster caster(mesh);
+    const VertexVisibility vis(mesh, caster, s.cameras, options.visibility, progress);
+    const std::vector<Vec3> normals = mesh.face_normals();
+    const double abs_eps = options.visibility.absolute_eps_of_diagonal * mesh.bounding_box().diagonal();
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, F), [&](const auto& r) {
+      for (std::size_t f = r.begin(); f < r.end(); ++f)
+        s.faces[f] = select_views(mesh, normals, vis, caster, s.cameras, centres, f, options, abs_eps);
+    });
+  });
+  return s;
+}
+
+PriResult compute_pri(const Scene& scene, const PriOptions& options,
+                      const ProgressCallback& progress) {
+  const auto start = std::chrono::steady_clock::now();
+  const PriViewSelection selection = select_pri_views(scene, options, progress);
+  const TriangleMesh& mesh = scene.mesh;
+  const std::vector<std::size_t>& image_views = selection.image_views;
+  const std::vector<PinholeCamera>& cams = selection.cameras;
+  const std::vector<PriFaceViews>& fv = selection.faces;
 
   const int threads = options.threads > 0 ? options.threads : tbb::this_task_arena::max_concurrency();
   tbb::task_arena arena(threads);
@@ -201,16 +217,6 @@ PriResult compute_pri(const Scene& scene, const PriOptions& options,
   const int channels = options.color ? 3 : 1;
 
   arena.execute([&] {
-    const RayCaster caster(mesh);
-    const VertexVisibility vis(mesh, caster, cams, options.visibility, progress);
-    const std::vector<Vec3> normals = mesh.face_normals();
-    const double abs_eps = options.visibility.absolute_eps_of_diagonal * mesh.bounding_box().diagonal();
-    std::vector<FaceViews> fv(F);
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, F), [&](const auto& r) {
-      for (std::size_t f = r.begin(); f < r.end(); ++f)
-        fv[f] = select_views(mesh, normals, vis, caster, cams, centres, f, options, abs_eps);
-    });
-
     // Faces in blocks whose sample storage stays under ~1 GB; each block
     // visits every view once (one image decoded and converted at a time).
     const std::size_t budget = std::size_t(256) << 20;  // floats

@@ -1,6 +1,7 @@
 // PRI edge cases and invariances on small rendered scenes with known geometry.
 // Scene: a 4 m x 4 m textured plane z = 0 (faces of 0.5 m), cameras 5 m
 // above it looking at the centre from different sides, 200x150 images.
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <iostream>
@@ -343,4 +344,27 @@ TEST(Pri, EdgeMarginKeepsSamplesOffSilhouettes) {
   PriOptions bad;
   bad.edge_margin = -1;
   EXPECT_THROW(compute_pri(s.scene, bad), Error);
+}
+
+TEST(Pri, ViewSelectionIsComputePrisFirstPhase) {
+  PlaneScene s = make_scene("selection", plane(), kEyes);
+  PriOptions o;
+  o.max_views_per_face = 3;
+  const PriViewSelection sel = select_pri_views(s.scene, o);
+  const PriResult r = compute_pri(s.scene, o);
+  ASSERT_EQ(sel.faces.size(), s.scene.mesh.num_faces());
+  EXPECT_EQ(sel.cameras.size(), kEyes.size());
+  std::size_t seen = 0;
+  for (std::size_t f = 0; f < sel.faces.size(); ++f) {
+    EXPECT_EQ(int(sel.faces[f].views.size()), r.pri_views[f]) << "face " << f;
+    EXPECT_LE(sel.faces[f].views.size(), 3u);
+    EXPECT_TRUE(std::is_sorted(sel.faces[f].views.begin(), sel.faces[f].views.end()));
+    EXPECT_GE(sel.faces[f].shrink, 0.0);
+    EXPECT_LE(sel.faces[f].shrink, 0.5);
+    seen += sel.faces[f].views.size() >= 2;
+  }
+  EXPECT_EQ(seen, r.observed);
+  Scene one = s.scene;
+  one.views.resize(1);
+  EXPECT_THROW(select_pri_views(one, o), Error);
 }

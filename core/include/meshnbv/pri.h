@@ -67,6 +67,23 @@ struct PriResult {
 // Uses every view with an image and used == true. Throws Error when the
 // mesh is invalid or an image is missing/undecodable; Cancelled when the
 // progress callback says stop. Deterministic for any thread count.
+// The views of each face that compute_pri compares, with its lattice: the
+// first phase of compute_pri (validation, visibility, grazing and
+// interior-occlusion rules, max_views_per_face), for tools that need the
+// per-face view lists (bench/). Throws Error as compute_pri does.
+struct PriFaceViews {
+  std::vector<int> views;    // indices into PriViewSelection::cameras, ascending
+  int samples_per_side = 0;  // r of the lattice (options' value or the automatic rule)
+  double shrink = 0;         // lattice contraction towards the centroid (edge_margin)
+};
+struct PriViewSelection {
+  std::vector<std::size_t> image_views;  // scene view of each camera below
+  std::vector<PinholeCamera> cameras;
+  std::vector<PriFaceViews> faces;       // per face
+};
+PriViewSelection select_pri_views(const Scene& scene, const PriOptions& options = {},
+                                  const ProgressCallback& progress = {});
+
 PriResult compute_pri(const Scene& scene, const PriOptions& options = {},
                       const ProgressCallback& progress = {});
 
