@@ -6,7 +6,7 @@
 #include "meshnbv/error.h"
 #include "meshnbv/io/file_util.h"
 #include "meshnbv/io/mesh_io.h"
-#include "meshnbv/io/pri_io.h"
+#include "meshnbv/results.h"
 #include "meshnbv/pri.h"
 #include "progress_bar.h"
 
@@ -70,8 +70,8 @@ void add_pri_command(CLI::App& app) {
     bar.finish();
     io::PlyWriteOptions ply;
     ply.overwrite = a->overwrite;
-    io::write_ply(io::mesh_with_pri(scene.mesh, r), a->out, ply);
-    const std::string summary = io::pri_summary_json(r, a->options, a->worst);
+    io::write_ply(mesh_with_pri(scene.mesh, r), a->out, ply);
+    const std::string summary = pri_summary_json(r, a->options, a->worst);
     if (!a->json.empty())
       io::write_atomically(a->json, [&](std::ostream& out) { out << summary; }, a->overwrite);
     const PriSummary s = summarize_pri(r, 1);

@@ -10,7 +10,7 @@
 #include "meshnbv/error.h"
 #include "meshnbv/io/file_util.h"
 #include "meshnbv/io/mesh_io.h"
-#include "meshnbv/io/pri_io.h"
+#include "meshnbv/results.h"
 #include "meshnbv/io/suggestions_io.h"
 #include "meshnbv/report.h"
 #include "progress_bar.h"
@@ -65,14 +65,14 @@ void add_run_command(CLI::App& app) {
     fs::create_directories(out);
     io::PlyWriteOptions ply;
     ply.overwrite = true;
-    io::write_ply(io::mesh_with_pri(scene.mesh, pri), (out / "pri.ply").string(), ply);
+    io::write_ply(mesh_with_pri(scene.mesh, pri), (out / "pri.ply").string(), ply);
     io::write_atomically((out / "pri.json").string(),
-                         [&](std::ostream& o) { o << io::pri_summary_json(pri, a->pri); });
+                         [&](std::ostream& o) { o << pri_summary_json(pri, a->pri); });
     io::write_atomically((out / "suggestions.json").string(), [&](std::ostream& o) {
-      o << io::suggestions_json(sug, so, {a->input.path, "computed (" + a->measure + ")"});
+      o << suggestions_json(sug, so, {a->input.path, "computed (" + a->measure + ")"});
     });
     io::write_suggestions_mlp(scene, sug, (out / "suggestions.mlp").string(), true);
-    io::write_ply(io::frustum_mesh(sug), (out / "frustums.ply").string(), ply);
+    io::write_ply(frustum_mesh(sug), (out / "frustums.ply").string(), ply);
     lap("write results");
 
     ReportInputs r;

@@ -131,7 +131,7 @@ void add_suggest_command(CLI::App& app) {
     const SuggestResult r = suggest_views(scene, pri, o, given, bar.callback());
     bar.finish();
     io::write_atomically(a->out, [&](std::ostream& out) {
-      out << io::suggestions_json(r, o, {a->input.path, pri_from});
+      out << suggestions_json(r, o, {a->input.path, pri_from});
     }, a->overwrite);
     for (const auto& s : r.suggestions) {
       const Vec3 c = s.camera.center();
@@ -153,7 +153,7 @@ void add_suggest_command(CLI::App& app) {
     if (!a->frustums.empty()) {
       io::PlyWriteOptions ply;
       ply.overwrite = a->overwrite;
-      io::write_ply(io::frustum_mesh(r), a->frustums, ply);
+      io::write_ply(frustum_mesh(r), a->frustums, ply);
       std::cout << "frustums: " << a->frustums << "\n";
     }
     if (!a->colmap.empty()) {

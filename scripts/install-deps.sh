@@ -12,7 +12,7 @@ PACKAGES=(
   nlohmann-json3-dev libpugixml-dev libcli11-dev libtinyobjloader-dev
   # tests and benchmarks
   libgtest-dev libgmock-dev libbenchmark-dev python3
-  # evaluation loop (core/src/eval, bench/eval): Boost.Graph max-flow for the
+  # evaluation loop (libs/eval/src, bench/eval): Boost.Graph max-flow for the
   # visibility mesher, COLMAP 3.8 for sparse reconstruction, plots
   libboost-dev colmap python3-matplotlib
   # robustness (fuzz/, docs/robustness.md): clang 14 with libFuzzer and the

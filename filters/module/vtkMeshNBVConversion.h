@@ -1,10 +1,11 @@
-// Private to the MeshNBV VTK module: moves data between VTK objects and the
+// Shared by the MeshNBV VTK modules (Filters, IO; not wrapped): moves data between VTK objects and the
 // core's types (docs/vtk.md describes the layouts). No algorithm lives here;
 // every function either converts or throws meshnbv::Error with a message
 // naming the block or cell at fault.
 #ifndef vtkMeshNBVConversion_h
 #define vtkMeshNBVConversion_h
 
+#include "vtkMeshNBVFiltersModule.h" // For export macro
 #include "vtkSmartPointer.h"
 
 #include "meshnbv/image.h"
@@ -41,14 +42,14 @@ constexpr const char* SuggestionsJSONName = "SuggestionsJSON";
 
 // vtkPolyData made only of triangles (polys) -> core mesh; cell i = face i.
 // Throws for vertices, lines, strips or polygons that are not triangles.
-meshnbv::TriangleMesh ToTriangleMesh(vtkPolyData* polydata);
+VTKMESHNBVFILTERS_EXPORT meshnbv::TriangleMesh ToTriangleMesh(vtkPolyData* polydata);
 // Core mesh -> vtkPolyData: per-face attributes become float cell arrays of
 // the same name, face colours an "RGB" unsigned char cell array.
-vtkSmartPointer<vtkPolyData> ToPolyData(const meshnbv::TriangleMesh& mesh);
+VTKMESHNBVFILTERS_EXPORT vtkSmartPointer<vtkPolyData> ToPolyData(const meshnbv::TriangleMesh& mesh);
 
 // A view block; `pixels` (may be null) become the "Pixels" point scalars,
 // rows flipped so that the block looks upright (vtkPNGReader's layout).
-vtkSmartPointer<vtkImageData> ToViewBlock(const meshnbv::View& view, const meshnbv::Image* pixels);
+VTKMESHNBVFILTERS_EXPORT vtkSmartPointer<vtkImageData> ToViewBlock(const meshnbv::View& view, const meshnbv::Image* pixels);
 
 struct ViewBlock
 {
@@ -58,9 +59,9 @@ struct ViewBlock
 };
 // Every leaf of a views input (a vtkMultiBlockDataSet of vtkImageData, possibly
 // nested), in order. Throws when a leaf is not an image or lacks ImageSize, K, R, t.
-std::vector<ViewBlock> ExtractViews(vtkDataObject* views);
+VTKMESHNBVFILTERS_EXPORT std::vector<ViewBlock> ExtractViews(vtkDataObject* views);
 // The pixels of a block as a core image (rows flipped back to top-down).
-meshnbv::Image ToImage(const ViewBlock& view);
+VTKMESHNBVFILTERS_EXPORT meshnbv::Image ToImage(const ViewBlock& view);
 
 } // namespace vtkMeshNBV
 

@@ -17,7 +17,7 @@
 #include "vtkMeshNBVProgress.h"
 
 #include "meshnbv/error.h"
-#include "meshnbv/io/suggestions_io.h"
+#include "meshnbv/results.h"
 #include "meshnbv/planner.h"
 
 #include <cmath>
@@ -282,14 +282,14 @@ int vtkMeshNBVNextBestViewFilter::RequestData(
     const meshnbv::SuggestResult result = meshnbv::suggest_views(
       scene, pri, options, given, vtkMeshNBV::MakeProgressCallback(this, { { "suggest", 1.0 } }));
 
-    frustums->ShallowCopy(vtkMeshNBV::ToPolyData(meshnbv::io::frustum_mesh(result, this->FrustumDepth)));
+    frustums->ShallowCopy(vtkMeshNBV::ToPolyData(meshnbv::frustum_mesh(result, this->FrustumDepth)));
     FillTable(table, result);
-    meshnbv::io::SuggestionContext context;
+    meshnbv::SuggestionContext context;
     context.scene = FieldString(views, vtkMeshNBV::SceneFileName);
     context.pri_from = "cell array '" + this->PRIArrayName + "'";
     vtkNew<vtkStringArray> json;
     json->SetName(vtkMeshNBV::SuggestionsJSONName);
-    json->InsertNextValue(meshnbv::io::suggestions_json(result, options, context));
+    json->InsertNextValue(meshnbv::suggestions_json(result, options, context));
     table->GetFieldData()->AddArray(json);
   }
   catch (const meshnbv::Cancelled&)

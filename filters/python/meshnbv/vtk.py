@@ -19,6 +19,8 @@ import vtkmodules.vtkIOCore  # noqa: F401
 from .vtkMeshNBVFilters import (  # noqa: F401
     vtkMeshNBVNextBestViewFilter,
     vtkMeshNBVPRIFilter,
+)
+from .vtkMeshNBVIO import (  # noqa: F401
     vtkMeshNBVSceneReader,
     vtkMeshNBVSuggestionWriter,
 )

@@ -12,8 +12,7 @@
 #include "document_scene.h"
 #include "meshnbv/energy.h"
 #include "meshnbv/error.h"
-#include "meshnbv/io/pri_io.h"
-#include "meshnbv/io/suggestions_io.h"
+#include "meshnbv/results.h"
 #include "meshnbv/planner.h"
 #include "meshnbv/pri.h"
 #include "raster_images.h"
@@ -406,7 +405,7 @@ void FilterMeshNbvPlugin::computePri(MeshDocument& document, const RichParameter
   Progress progress(callback, "Compute PRI");
   const PriResult r = compute_pri(ds.scene, options, progress.callback());
 
-  const TriangleMesh coloured = io::mesh_with_pri(ds.scene.mesh, r);
+  const TriangleMesh coloured = mesh_with_pri(ds.scene.mesh, r);
   model->updateDataMask(MeshModel::MM_FACEQUALITY | MeshModel::MM_FACECOLOR);
   for (std::size_t f = 0; f < ds.faces.size(); ++f) {
     ds.faces[f]->Q() = r.pri[f];
@@ -512,7 +511,7 @@ void FilterMeshNbvPlugin::suggestNextView(MeshDocument& document, const RichPara
 
   if (par.getBool("add_frustum_layer") && !r.suggestions.empty()) {
     MeshModel* frustums = document.addNewMesh("", "nbv_frustums", false);
-    meshlab::fill_model(io::frustum_mesh(r), *frustums, "rank");
+    meshlab::fill_model(frustum_mesh(r), *frustums, "rank");
     logLine("Suggest Next View: added the mesh layer 'nbv_frustums' (" +
             std::to_string(frustums->cm.fn) + " faces)");
   }

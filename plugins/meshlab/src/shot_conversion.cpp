@@ -8,7 +8,7 @@
 namespace meshnbv::meshlab {
 namespace {
 
-// What the core writes into .mlp files too (core/src/io/mlp.cpp).
+// What the core writes into .mlp files too (libs/io/src/mlp.cpp).
 constexpr float kPixelSizeMm = 0.0369161f;
 
 }  // namespace

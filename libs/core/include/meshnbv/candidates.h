@@ -1,0 +1,78 @@
+// Candidate camera poses for the next view (SPEC section 5): hemisphere
+// sampling around the worst region, the safety rules, and a derivative-free
+// refinement (the paper's future work).
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "meshnbv/energy.h"
+#include "meshnbv/raycaster.h"
+
+namespace meshnbv {
+
+// A pose is safe when it is outside the mesh's volume and at least
+// `distance` from its surface.
+class SafetyChecker {
+ public:
+  SafetyChecker(const TriangleMesh& mesh, const RayCaster& caster, double distance);
+  // Inside when, along a majority of three fixed directions, the first
+  // surface hit is seen from its back: the point is enclosed by a solid (also
+  // under an open ground plane). Works for unions of closed components.
+  bool inside_volume(const Vec3& p) const;
+  double distance_to_surface(const Vec3& p) const { return caster_.closest_point(p); }
+  bool too_close(const Vec3& p) const { return distance_to_surface(p) < distance_; }
+  bool safe(const Vec3& p) const { return !too_close(p) && !inside_volume(p); }
+  double distance() const { return distance_; }
+
+ private:
+  const TriangleMesh& mesh_;
+  const RayCaster& caster_;
+  double distance_;
+};
+
+struct SamplingOptions {
+  int directions = 512;                               // Fibonacci spiral on the hemisphere
+  std::vector<double> distance_factors = {0.75, 1.0, 1.5};  // times the median viewing distance
+  std::uint64_t seed = 1;                             // rotates the spiral
+};
+
+struct CandidateSet {
+  std::vector<PinholeCamera> cameras;
+  std::size_t generated = 0, rejected_inside = 0, rejected_too_close = 0;
+};
+
+// Median distance from the existing cameras to the surface along their
+// optical axes (to `fallback_target` when the axis misses the mesh).
+double median_viewing_distance(const std::vector<PinholeCamera>& cameras, const RayCaster& caster,
+                               const Vec3& fallback_target);
+// Mean image-up vector of the cameras (world), normalised; +z if undefined.
+Vec3 mean_up(const std::vector<PinholeCamera>& cameras);
+// The most common intrinsics (fx, fy, cx, cy, size; no distortion).
+PinholeCamera most_common_intrinsics(const std::vector<PinholeCamera>& cameras);
+
+// Cameras on the hemisphere of `region.mean_normal` around `region.centroid`,
+// looking at the centroid, with `up` and `intrinsics`; unsafe ones rejected
+// and counted.
+CandidateSet sample_candidates(const WorstRegion& region, const PinholeCamera& intrinsics,
+                               const Vec3& up, double viewing_distance,
+                               const SafetyChecker& safety, const SamplingOptions& options);
+
+// A camera at `centre` looking along `direction` with `up` (falls back to
+// another up when they are parallel).
+PinholeCamera camera_looking(const PinholeCamera& intrinsics, const Vec3& centre,
+                             const Vec3& direction, const Vec3& up);
+
+struct RefineOptions {
+  int iterations = 150;          // Nelder-Mead iterations
+  double position_step = 0.1;    // initial simplex, times the distance to the region
+  double angle_step = 5.0;       // initial simplex, degrees
+};
+
+// Nelder-Mead over position (3) and viewing direction (2); unsafe poses are
+// infeasible. Returns a pose whose energy is >= the start's.
+PinholeCamera refine_candidate(const PinholeCamera& start, const Vec3& up,
+                               const EnergyEvaluator& energy, const SafetyChecker& safety,
+                               const RefineOptions& options = {});
+
+}  // namespace meshnbv

@@ -1,0 +1,203 @@
+#include "meshnbv/candidates.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <map>
+#include <tuple>
+
+#include "meshnbv/error.h"
+
+namespace meshnbv {
+
+SafetyChecker::SafetyChecker(const TriangleMesh& mesh, const RayCaster& caster, double distance)
+    : mesh_(mesh), caster_(caster), distance_(distance) {
+  // Distances to a surface of zero-area faces only would be meaningless.
+  const double diagonal = mesh.bounding_box().diagonal();
+  bool any_area = false;
+  for (std::size_t f = 0; f < mesh.faces.size() && !any_area; ++f)
+    any_area = mesh.face_area(f) > 1e-14 * diagonal * diagonal;
+  if (!any_area) throw Error("the surface has no non-degenerate face");
+}
+
+bool SafetyChecker::inside_volume(const Vec3& p) const {
+  // Three fixed, non-axis-aligned directions (axis-aligned rays would graze
+  // the edges of axis-aligned walls).
+  static const std::array<Vec3, 3> dirs = {Vec3(0.267, 0.534, 0.802).normalized(),
+                                           Vec3(-0.623, 0.312, -0.717).normalized(),
+                                           Vec3(0.401, -0.816, 0.416).normalized()};
+  int inside = 0;
+  for (const Vec3& d : dirs) {
+    RayHit hit;
+    if (caster_.intersect(p, d, &hit) && mesh_.face_normal(std::size_t(hit.face)).dot(d) > 0) ++inside;
+  }
+  return inside >= 2;
+}
+
+double median_viewing_distance(const std::vector<PinholeCamera>& cameras, const RayCaster& caster,
+                               const Vec3& fallback_target) {
+  if (cameras.empty()) throw Error("no existing camera to take a viewing distance from");
+  std::vector<double> d;
+  for (const auto& c : cameras) {
+    RayHit hit;
+    if (caster.intersect(c.center(), c.forward(), &hit))
+      d.push_back(hit.distance);
+    else
+      d.push_back((fallback_target - c.center()).norm());
+  }
+  std::nth_element(d.begin(), d.begin() + d.size() / 2, d.end());
+  return d[d.size() / 2];
+}
+
+Vec3 mean_up(const std::vector<PinholeCamera>& cameras) {
+  Vec3 sum = Vec3::Zero();
+  for (const auto& c : cameras) sum -= c.down();
+  return sum.norm() > 1e-9 ? Vec3(sum.normalized()) : Vec3::UnitZ();
+}
+
+PinholeCamera most_common_intrinsics(const std::vector<PinholeCamera>& cameras) {
+  if (cameras.empty()) throw Error("no existing camera to take intrinsics from");
+  std::map<std::tuple<double, double, double, double, int, int>, int> count;
+  for (const auto& c : cameras) ++count[{c.fx, c.fy, c.cx, c.cy, c.width, c.height}];
+  // Highest count; ties by the order of the first occurrence.
+  const PinholeCamera* best = &cameras[0];
+  int best_n = 0;
+  for (const auto& c : cameras) {
+    const int n = count[{c.fx, c.fy, c.cx, c.cy, c.width, c.height}];
+    if (n > best_n) best = &c, best_n = n;
+  }
+  PinholeCamera out = *best;
+  out.k1 = out.k2 = 0;
+  return out;
+}
+
+PinholeCamera camera_looking(const PinholeCamera& intr, const Vec3& centre, const Vec3& direction,
+                             const Vec3& up) {
+  const Vec3 d = direction.normalized();
+  Vec3 u = up;
+  if (std::abs(d.dot(u.normalized())) > 0.999) u = std::abs(d.z()) < 0.9 ? Vec3::UnitZ() : Vec3::UnitY();
+  return PinholeCamera::look_at(centre, centre + d, u, intr.fx, intr.fy, intr.cx, intr.cy,
+                                intr.width, intr.height);
+}
+
+CandidateSet sample_candidates(const WorstRegion& region, const PinholeCamera& intr, const Vec3& up,
+                               double distance, const SafetyChecker& safety,
+                               const SamplingOptions& o) {
+  if (o.directions < 1) throw Error("need at least one sampling direction");
+  if (!(distance > 0)) throw Error("viewing distance must be positive");
+  CandidateSet out;
+  // Orthonormal frame around the region's normal.
+  const Vec3 n = region.mean_normal;
+  Vec3 a = std::abs(n.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY();
+  const Vec3 e1 = n.cross(a).normalized(), e2 = n.cross(e1);
+  const double golden = M_PI * (3.0 - std::sqrt(5.0));
+  // The seed turns the spiral about the normal (splitmix to an angle).
+  std::uint64_t x = o.seed + 0x9E3779B97F4A7C15ull;
+  x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ull;
+  x = (x ^ (x >> 27)) * 0x94D049BB133111EBull;
+  const double phase = double((x ^ (x >> 31)) >> 11) * 0x1.0p-53 * 2 * M_PI;
+  for (int k = 0; k < o.directions; ++k) {
+    // Heights (cosines) evenly in (0, 1]: the open hemisphere.
+    const double h = 1.0 - (k + 0.5) / o.directions;
+    const double r = std::sqrt(std::max(0.0, 1 - h * h));
+    const double phi = golden * k + phase;
+    const Vec3 dir = h * n + r * (std::cos(phi) * e1 + std::sin(phi) * e2);
+    for (double factor : o.distance_factors) {
+      ++out.generated;
+      const Vec3 centre = region.centroid + factor * distance * dir;
+      if (safety.too_close(centre)) {
+        ++out.rejected_too_close;
+        continue;
+      }
+      if (safety.inside_volume(centre)) {
+        ++out.rejected_inside;
+        continue;
+      }
+      out.cameras.push_back(camera_looking(intr, centre, region.centroid - centre, up));
+    }
+  }
+  return out;
+}
+
+namespace {
+
+using Params = std::array<double, 5>;  // x, y, z, yaw, pitch
+
+struct PoseFrame {
+  Vec3 forward, right, upv;
+};
+
+PinholeCamera pose(const PinholeCamera& start, const PoseFrame& f, const Vec3& up, const Params& p) {
+  // Yaw about the start's up axis, then pitch about its right axis.
+  const Vec3 yawed = std::cos(p[3]) * f.forward + std::sin(p[3]) * f.right;
+  const Vec3 dir = std::cos(p[4]) * yawed + std::sin(p[4]) * f.upv;
+  return camera_looking(start, Vec3(p[0], p[1], p[2]), dir, up);
+}
+
+}  // namespace
+
+PinholeCamera refine_candidate(const PinholeCamera& start, const Vec3& up,
+                               const EnergyEvaluator& energy, const SafetyChecker& safety,
+                               const RefineOptions& o) {
+  const Vec3 c0 = start.center();
+  PoseFrame frame{start.forward(), start.right(), -start.down()};
+  const double scale = std::max(1e-9, (energy.region().centroid - c0).norm());
+  auto cost = [&](const Params& p) {
+    const Vec3 c(p[0], p[1], p[2]);
+    if (!safety.safe(c)) return std::numeric_limits<double>::infinity();
+    return -energy.evaluate(pose(start, frame, up, p)).total;
+  };
+  // Nelder-Mead (standard coefficients), 6 vertices in 5-D.
+  std::array<Params, 6> s;
+  std::array<double, 6> f;
+  s[0] = {c0.x(), c0.y(), c0.z(), 0.0, 0.0};
+  const double steps[5] = {o.position_step * scale, o.position_step * scale,
+                           o.position_step * scale, o.angle_step * M_PI / 180,
+                           o.angle_step * M_PI / 180};
+  for (int i = 1; i < 6; ++i) {
+    s[i] = s[0];
+    s[i][i - 1] += steps[i - 1];
+  }
+  for (int i = 0; i < 6; ++i) f[i] = cost(s[i]);
+  const double f_start = f[0];
+  for (int it = 0; it < o.iterations; ++it) {
+    std::array<int, 6> idx = {0, 1, 2, 3, 4, 5};
+    std::sort(idx.begin(), idx.end(), [&](int a, int b) { return f[a] < f[b]; });
+    const int best = idx[0], worst = idx[5], second = idx[4];
+    Params centroid{};
+    for (int i = 0; i < 5; ++i)
+      for (int d = 0; d < 5; ++d) centroid[d] += s[idx[i]][d] / 5.0;
+    auto along = [&](double t) {
+      Params p;
+      for (int d = 0; d < 5; ++d) p[d] = centroid[d] + t * (s[worst][d] - centroid[d]);
+      return p;
+    };
+    const Params xr = along(-1.0);
+    const double fr = cost(xr);
+    if (fr < f[best]) {
+      const Params xe = along(-2.0);
+      const double fe = cost(xe);
+      if (fe < fr) s[worst] = xe, f[worst] = fe;
+      else s[worst] = xr, f[worst] = fr;
+    } else if (fr < f[second]) {
+      s[worst] = xr, f[worst] = fr;
+    } else {
+      const Params xc = fr < f[worst] ? along(-0.5) : along(0.5);
+      const double fc = cost(xc);
+      if (fc < std::min(fr, f[worst])) {
+        s[worst] = xc, f[worst] = fc;
+      } else {
+        for (int i = 1; i < 6; ++i) {  // shrink towards the best
+          const int k = idx[i];
+          for (int d = 0; d < 5; ++d) s[k][d] = s[best][d] + 0.5 * (s[k][d] - s[best][d]);
+          f[k] = cost(s[k]);
+        }
+      }
+    }
+  }
+  const int best = int(std::min_element(f.begin(), f.end()) - f.begin());
+  if (!(f[best] < f_start)) return start;  // never worse than where it began
+  return pose(start, frame, up, s[best]);
+}
+
+}  // namespace meshnbv

@@ -1,0 +1,196 @@
+#include "meshnbv/planner.h"
+#include "meshnbv/enum_names.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <set>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include "meshnbv/error.h"
+
+namespace meshnbv {
+
+constexpr detail::EnumTable<CandidateMode, 3> kCandidateModes = {
+    {"given", CandidateMode::Given},
+    {"sampled", CandidateMode::Sampled},
+    {"refined", CandidateMode::Refined},
+};
+
+CandidateMode parse_candidate_mode(const std::string& name) {
+  return detail::parse_enum(name, kCandidateModes, "candidate mode");
+}
+
+std::string candidate_mode_name(CandidateMode mode) {
+  return detail::enum_name(mode, kCandidateModes);
+}
+
+void SuggestOptions::check() const {
+  if (worst_k < 1) throw Error("worst_k must be >= 1");
+  if (top < 1) throw Error("top must be >= 1");
+  if (!(safety_distance >= 0)) throw Error("safety_distance must be >= 0");
+  if (refine_best < 1) throw Error("refine_best must be >= 1");
+  if (threads < 0) throw Error("threads must be >= 0");
+  energy.check();
+}
+
+namespace {
+
+struct Scored {
+  PinholeCamera camera;
+  std::string label;
+  EnergyTerms energy;
+  std::size_t given_index = std::size_t(-1);
+};
+
+// Energies in parallel; stable order: best energy first, ties by input order.
+std::vector<Scored> score(const std::vector<Scored>& in, const EnergyEvaluator& e) {
+  std::vector<Scored> out = in;
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, out.size()), [&](const auto& r) {
+    for (std::size_t i = r.begin(); i < r.end(); ++i) out[i].energy = e.evaluate(out[i].camera);
+  });
+  std::stable_sort(out.begin(), out.end(),
+                   [](const Scored& a, const Scored& b) { return a.energy.total > b.energy.total; });
+  return out;
+}
+
+Vec3 look_at_point(const PinholeCamera& cam, const RayCaster& caster, const Vec3& region_centroid) {
+  RayHit hit;
+  if (caster.intersect(cam.center(), cam.forward(), &hit)) return cam.center() + hit.distance * cam.forward();
+  return cam.center() + cam.forward() * (region_centroid - cam.center()).norm();
+}
+
+}  // namespace
+
+SuggestResult suggest_views(const Scene& scene, const std::vector<float>& pri,
+                            const SuggestOptions& o, const std::vector<View>& given,
+                            const ProgressCallback& progress) {
+  o.check();
+  const auto start = std::chrono::steady_clock::now();
+  const TriangleMesh& mesh = scene.mesh;
+  mesh.validate(scene.mesh_path);
+  if (mesh.empty()) throw Error("the mesh has no faces");
+  std::vector<PinholeCamera> existing_cams;
+  for (const auto& v : scene.views)
+    if (v.has_image() && v.used) existing_cams.push_back(v.camera);
+  if (existing_cams.empty())
+    throw Error("no existing view (with an image) to take distances, intrinsics and parallax from");
+
+  std::vector<Scored> pool;  // given candidates
+  if (o.mode == CandidateMode::Given) {
+    const std::vector<View>* src = &given;
+    std::vector<View> own;
+    if (given.empty()) {
+      for (const auto& v : scene.views)
+        if (!v.has_image() || !v.used) own.push_back(v);
+      src = &own;
+    }
+    for (std::size_t i = 0; i < src->size(); ++i) {
+      (*src)[i].camera.check("candidate '" + (*src)[i].label + "'");
+      pool.push_back({(*src)[i].camera, (*src)[i].label, {}, i});
+    }
+    if (pool.empty())
+      throw Error("given mode: no candidate views (no view without image or marked unused, and "
+                  "no --candidates-from scene)");
+  }
+
+  const int threads = o.threads > 0 ? o.threads : tbb::this_task_arena::max_concurrency();
+  tbb::task_arena arena(threads);
+  SuggestResult result;
+  arena.execute([&] {
+    const RayCaster caster(mesh);
+    const double diag = mesh.bounding_box().diagonal();
+    const SafetyChecker safety(mesh, caster, o.safety_distance * diag);
+    const PinholeCamera intr = most_common_intrinsics(existing_cams);
+    const Vec3 up = mean_up(existing_cams);
+    std::vector<Vec3> existing;
+    for (const auto& c : existing_cams) existing.push_back(c.center());
+
+    std::vector<char> done(mesh.num_faces(), 0);
+    WorstRegion region = worst_region(mesh, pri, o.worst_k);
+    result.regions.push_back(region);
+    std::set<int> region_seen;
+    const double viewing_distance = median_viewing_distance(existing_cams, caster, region.centroid);
+
+    for (int pick = 0; pick < o.top; ++pick) {
+      const EnergyEvaluator energy(mesh, caster, region, existing, o.energy);
+      std::vector<Scored> candidates;
+      if (o.mode == CandidateMode::Given) {
+        candidates = pool;
+      } else {
+        SamplingOptions so = o.sampling;
+        so.seed = o.sampling.seed + std::uint64_t(pick);
+        const CandidateSet set = sample_candidates(region, intr, up, viewing_distance, safety, so);
+        result.candidates_generated += set.generated;
+        result.rejected_inside += set.rejected_inside;
+        result.rejected_too_close += set.rejected_too_close;
+        for (const auto& c : set.cameras) candidates.push_back({c, candidate_mode_name(CandidateMode::Sampled), {}});
+      }
+      if (candidates.empty())
+        throw Error("no candidate left: all " + std::to_string(result.candidates_generated) +
+                    " sampled poses were inside the mesh or nearer than the safety distance (" +
+                    std::to_string(safety.distance()) + ") to it");
+      std::vector<Scored> scored = score(candidates, energy);
+      result.candidates_evaluated += scored.size();
+      if (o.mode == CandidateMode::Refined) {
+        const std::size_t n = std::min<std::size_t>(std::size_t(o.refine_best), scored.size());
+        std::vector<Scored> refined(n);
+        tbb::parallel_for(std::size_t(0), n, [&](std::size_t i) {
+          refined[i] = scored[i];
+          refined[i].camera = refine_candidate(scored[i].camera, up, energy, safety, o.refine);
+          refined[i].energy = energy.evaluate(refined[i].camera);
+          refined[i].label = candidate_mode_name(CandidateMode::Refined);
+        });
+        result.candidates_evaluated += n * std::size_t(o.refine.iterations);
+        scored.insert(scored.begin(), refined.begin(), refined.end());
+        std::stable_sort(scored.begin(), scored.end(), [](const Scored& a, const Scored& b) {
+          return a.energy.total > b.energy.total;
+        });
+      }
+      if (pick == 0) {
+        const std::size_t keep = o.mode == CandidateMode::Given ? scored.size() : std::min<std::size_t>(50, scored.size());
+        for (std::size_t i = 0; i < keep; ++i)
+          result.ranking.push_back({scored[i].label, scored[i].camera, scored[i].energy});
+      }
+      const Scored& best = scored.front();
+      Suggestion s;
+      s.rank = pick + 1;
+      s.label = "nbv_" + std::to_string(pick + 1);
+      s.source = best.label;
+      s.region = int(result.regions.size()) - 1;
+      s.camera = best.camera;
+      s.look_at = look_at_point(best.camera, caster, region.centroid);
+      s.energy = best.energy;
+      s.seen_faces = energy.seen_faces(best.camera);
+      result.suggestions.push_back(s);
+      report_progress(progress, double(pick + 1) / o.top, "suggest");
+
+      // The pick now exists: parallax for later picks, out of the given pool.
+      existing.push_back(best.camera.center());
+      if (best.given_index != std::size_t(-1))
+        pool.erase(std::remove_if(pool.begin(), pool.end(),
+                                  [&](const Scored& c) { return c.given_index == best.given_index; }),
+                   pool.end());
+      if (pick + 1 == o.top) break;
+      if (o.mode == CandidateMode::Given && pool.empty()) break;
+      region_seen.insert(s.seen_faces.begin(), s.seen_faces.end());
+      if (region_seen.size() == region.faces.size()) {
+        for (int f : region.faces) done[std::size_t(f)] = 1;
+        try {
+          region = worst_region(mesh, pri, o.worst_k, &done);
+        } catch (const Error&) {
+          break;  // every observed face has been covered
+        }
+        result.regions.push_back(region);
+        region_seen.clear();
+      }
+    }
+  });
+  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+}  // namespace meshnbv

@@ -1,0 +1,416 @@
+#include "meshnbv/pri.h"
+#include "meshnbv/enum_names.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <memory>
+#include <numeric>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include "meshnbv/error.h"
+#include "meshnbv/raycaster.h"
+
+namespace meshnbv {
+
+constexpr detail::EnumTable<Measure, 2> kMeasures = {
+    {"ssd", Measure::SSD},
+    {"ncc", Measure::NCC},
+};
+
+Measure parse_measure(const std::string& name) {
+  return detail::parse_enum(name, kMeasures, "measure");
+}
+
+std::string measure_name(Measure measure) {
+  return detail::enum_name(measure, kMeasures);
+}
+
+void PriOptions::check() const {
+  if (samples_per_side < 0 || samples_per_side > 64)
+    throw Error("samples_per_side must be 0 (automatic) or 1..64, got " +
+                std::to_string(samples_per_side));
+  if (max_views_per_face < 0 || max_views_per_face == 1)
+    throw Error("max_views_per_face must be 0 (all) or >= 2, got " +
+                std::to_string(max_views_per_face));
+  if (threads < 0) throw Error("threads must be >= 0 (0 = all cores)");
+  if (!(textureless_variance >= 0)) throw Error("textureless_variance must be >= 0");
+  if (!(edge_margin >= 0 && edge_margin <= 16))
+    throw Error("edge_margin must be in [0, 16] pixels");
+  if (!(max_incidence_angle > 0 && max_incidence_angle <= 90))
+    throw Error("max_incidence_angle must be in (0, 90] degrees");
+  if (!(visibility.relative_eps >= 0 && visibility.relative_eps < 1))
+    throw Error("visibility relative eps must be in [0, 1)");
+}
+
+double ssd_error(const float* a, const float* b, std::size_t n) {
+  double sum = 0;
+  for (std::size_t k = 0; k < n; ++k) {
+    const double d = double(a[k]) - double(b[k]);
+    sum += d * d;
+  }
+  return n ? sum / double(n) : 0.0;
+}
+
+namespace {
+
+struct PatchStats {
+  double mean = 0, inv_norm = 0;  // inv_norm = 1 / sqrt(sum (x - mean)^2)
+  bool textureless = true;
+};
+
+PatchStats patch_stats(const float* a, std::size_t n, double min_variance) {
+  PatchStats s;
+  double sum = 0;
+  for (std::size_t k = 0; k < n; ++k) sum += a[k];
+  s.mean = sum / double(n);
+  double ss = 0;
+  for (std::size_t k = 0; k < n; ++k) ss += (a[k] - s.mean) * (a[k] - s.mean);
+  const double variance = ss / double(n);
+  s.textureless = !(variance >= min_variance) || ss <= 0;
+  s.inv_norm = s.textureless ? 0.0 : 1.0 / std::sqrt(ss);
+  return s;
+}
+
+double ncc_from_stats(const float* a, const PatchStats& sa, const float* b, const PatchStats& sb,
+                      std::size_t n) {
+  double cross = 0;
+  for (std::size_t k = 0; k < n; ++k) cross += (a[k] - sa.mean) * (b[k] - sb.mean);
+  const double rho = std::clamp(cross * sa.inv_norm * sb.inv_norm, -1.0, 1.0);
+  return (1.0 - rho) / 2.0;
+}
+
+// The lattice is never contracted to less than half the face (faces a few
+// pixels wide keep their centre half).
+constexpr double kMaxShrink = 0.5;
+
+double projected_area(const Vec2& a, const Vec2& b, const Vec2& c) {
+  return 0.5 * std::abs((b - a).x() * (c - a).y() - (b - a).y() * (c - a).x());
+}
+
+// The centroid and the edge midpoints of face f are unoccluded from centre c.
+bool interior_unoccluded(const TriangleMesh& mesh, const RayCaster& caster, std::size_t f,
+                         const Vec3& c, const PriOptions& o, double abs_eps) {
+  const Face& face = mesh.faces[f];
+  const Vec3 &a = mesh.vertices[face[0]], &b = mesh.vertices[face[1]], &d = mesh.vertices[face[2]];
+  const Vec3 points[4] = {(a + b + d) / 3.0, 0.5 * (a + b), 0.5 * (b + d), 0.5 * (d + a)};
+  return caster.segments_clear4(c, points, o.visibility.relative_eps, abs_eps);
+}
+
+PriFaceViews select_views(const TriangleMesh& mesh, const std::vector<Vec3>& normals,
+                       const VertexVisibility& vis, const RayCaster& caster,
+                       const std::vector<PinholeCamera>& cams, const std::vector<Vec3>& centres,
+                       std::size_t f, const PriOptions& o, double abs_eps) {
+  PriFaceViews out;
+  struct Candidate {
+    int view;
+    double angle, area, max_edge, inner;  // inner: distance (px) from the centroid to the nearest edge
+  };
+  std::vector<Candidate> candidates;
+  const Vec3 centroid = mesh.face_centroid(f);
+  const Face& face = mesh.faces[f];
+  const double min_cosine = std::cos(o.max_incidence_angle * M_PI / 180.0);
+  for (std::size_t i = 0; i < cams.size(); ++i) {
+    if (!face_visible(mesh, normals, vis, f, i, centres[i])) continue;
+    Vec2 p[3];
+    for (int k = 0; k < 3; ++k) cams[i].project(mesh.vertices[face[k]], &p[k]);
+    const double cosine = normals[f].dot((centres[i] - centroid).normalized());
+    if (cosine < min_cosine) continue;  // grazing view
+    if (o.check_interior_occlusion && !interior_unoccluded(mesh, caster, f, centres[i], o, abs_eps))
+      continue;
+    const double max_edge = std::max({(p[1] - p[0]).norm(), (p[2] - p[1]).norm(), (p[0] - p[2]).norm()});
+    const double area = projected_area(p[0], p[1], p[2]);
+    // The centroid is a third of each height away from that edge.
+    candidates.push_back({int(i), std::acos(std::clamp(cosine, -1.0, 1.0)), area, max_edge,
+                          2.0 * area / (3.0 * max_edge)});
+  }
+  if (o.max_views_per_face > 0 && int(candidates.size()) > o.max_views_per_face) {
+    // Smallest incidence angle first; ties by larger projected area, then by index.
+    std::stable_sort(candidates.begin(), candidates.end(), [](const Candidate& a, const Candidate& b) {
+      if (a.angle != b.angle) return a.angle < b.angle;
+      return a.area > b.area;
+    });
+    candidates.resize(std::size_t(o.max_views_per_face));
+    std::sort(candidates.begin(), candidates.end(),
+              [](const Candidate& a, const Candidate& b) { return a.view < b.view; });
+  }
+  double max_edge = 0;
+  for (const auto& c : candidates) {
+    out.views.push_back(c.view);
+    max_edge = std::max(max_edge, c.max_edge);
+    // Contraction that keeps the lattice edge_margin pixels inside the
+    // face's projection in this view (the bilinear footprint of a border
+    // sample must not reach beyond the face).
+    if (o.edge_margin > 0)
+      out.shrink = std::max(out.shrink, c.inner > 0 ? o.edge_margin / c.inner : 1.0);
+  }
+  out.shrink = std::min(out.shrink, kMaxShrink);
+  out.samples_per_side = o.samples_per_side > 0
+                             ? o.samples_per_side
+                             : std::clamp(int(std::ceil(max_edge)), 2, 32);
+  return out;
+}
+
+}  // namespace
+
+double ncc_error(const float* a, const float* b, std::size_t n, double min_variance) {
+  const PatchStats sa = patch_stats(a, n, min_variance), sb = patch_stats(b, n, min_variance);
+  if (sa.textureless || sb.textureless) return -1.0;
+  return ncc_from_stats(a, sa, b, sb, n);
+}
+
+PriViewSelection select_pri_views(const Scene& scene, const PriOptions& options,
+                                  const ProgressCallback& progress) {
+  options.check();
+  const TriangleMesh& mesh = scene.mesh;
+  mesh.validate(scene.mesh_path);
+  if (mesh.empty()) throw Error("the mesh has no faces: nothing to compute PRI on");
+  PriViewSelection s;
+  for (std::size_t i = 0; i < scene.views.size(); ++i)
+    if (scene.views[i].has_image() && scene.views[i].used) s.image_views.push_back(i);
+  if (s.image_views.size() < 2)
+    throw Error("PRI needs at least 2 views with images; the scene has " +
+                std::to_string(s.image_views.size()));
+  std::vector<Vec3> centres;
+  for (std::size_t i : s.image_views) {
+    scene.views[i].camera.check("view '" + scene.views[i].label + "'");
+    s.cameras.push_back(scene.views[i].camera);
+    centres.push_back(s.cameras.back().center());
+  }
+  const std::size_t F = mesh.num_faces();
+  s.faces.resize(F);
+  const int threads = options.threads > 0 ? options.threads : tbb::this_task_arena::max_concurrency();
+  tbb::task_arena arena(threads);
+  arena.execute([&] {
+    const RayCaster caster(mesh);
+    const VertexVisibility vis(mesh, caster, s.cameras, options.visibility, progress);
+    const std::vector<Vec3> normals = mesh.face_normals();
+    const double abs_eps = options.visibility.absolute_eps_of_diagonal * mesh.bounding_box().diagonal();
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, F), [&](const auto& r) {
+      for (std::size_t f = r.begin(); f < r.end(); ++f)
+        s.faces[f] = select_views(mesh, normals, vis, caster, s.cameras, centres, f, options, abs_eps);
+    });
+  });
+  return s;
+}
+
+PriResult compute_pri(const Scene& scene, const PriOptions& options,
+                      const ProgressCallback& progress) {
+  const auto start = std::chrono::steady_clock::now();
+  const PriViewSelection selection = select_pri_views(scene, options, progress);
+  const TriangleMesh& mesh = scene.mesh;
+  const std::vector<std::size_t>& image_views = selection.image_views;
+  const std::vector<PinholeCamera>& cams = selection.cameras;
+  const std::vector<PriFaceViews>& fv = selection.faces;
+
+  const int threads = options.threads > 0 ? options.threads : tbb::this_task_arena::max_concurrency();
+  tbb::task_arena arena(threads);
+  PriResult result;
+  const std::size_t F = mesh.num_faces();
+  result.pri.assign(F, std::numeric_limits<float>::quiet_NaN());
+  result.pri_views.assign(F, 0);
+  result.status.assign(F, FaceStatus::Unobserved);
+  result.views_used = image_views.size();
+  const int channels = options.color ? 3 : 1;
+
+  arena.execute([&] {
+    // Faces in blocks whose sample storage stays under ~1 GB; each block
+    // visits every view once (one image decoded and converted at a time).
+    const std::size_t budget = std::size_t(256) << 20;  // floats
+    std::size_t block_begin = 0;
+    while (block_begin < F) {
+      std::size_t block_end = block_begin, floats = 0;
+      std::vector<std::size_t> offset;
+      while (block_end < F) {
+        const std::size_t r = std::size_t(fv[block_end].samples_per_side);
+        const std::size_t need = (r + 1) * (r + 2) / 2 * fv[block_end].views.size() * channels;
+        if (floats + need > budget && block_end > block_begin) break;
+        offset.push_back(floats);
+        floats += need;
+        ++block_end;
+      }
+      // Every slot is written by its view before it is read: no zero fill.
+      const std::unique_ptr<float[]> samples(new float[floats]);
+      // Per view, the faces of the block that it sees and the slot of each.
+      std::vector<std::vector<std::pair<std::size_t, int>>> by_view(cams.size());
+      for (std::size_t f = block_begin; f < block_end; ++f)
+        for (std::size_t k = 0; k < fv[f].views.size(); ++k)
+          by_view[std::size_t(fv[f].views[k])].emplace_back(f, int(k));
+
+      for (std::size_t i = 0; i < cams.size(); ++i) {
+        if (!by_view[i].empty()) {
+          const auto image = scene.image(image_views[i]);
+          const FloatImage plane =
+              options.color ? FloatImage::rgb_of(*image) : FloatImage::luminance_of(*image);
+          const PinholeCamera& cam = cams[i];
+          // Without distortion the projection of a lattice point is the
+          // same barycentric mix of the vertices' homogeneous projections:
+          // three matrix products per (face, view) instead of one per sample.
+          const bool linear = !cam.has_distortion();
+          const Mat3 KR = cam.K() * cam.R;
+          const Vec3 Kt = cam.K() * cam.t;
+          tbb::parallel_for(tbb::blocked_range<std::size_t>(0, by_view[i].size()), [&](const auto& r) {
+            for (std::size_t j = r.begin(); j < r.end(); ++j) {
+              const auto [f, k] = by_view[i][j];
+              const int rs = fv[f].samples_per_side;
+              const std::size_t n = std::size_t(rs + 1) * (rs + 2) / 2;
+              float* slot = &samples[offset[f - block_begin] + std::size_t(k) * n * channels];
+              const Face& face = mesh.faces[f];
+              const Vec3 &v0 = mesh.vertices[face[0]], &v1 = mesh.vertices[face[1]],
+                         &v2 = mesh.vertices[face[2]];
+              // The lattice, contracted towards the centroid by the face's
+              // edge-margin factor (the same 3-D points in every view).
+              const double keep = 1.0 - fv[f].shrink;
+              const Vec3 g = (v0 + v1 + v2) / 3.0;
+              const Vec3 w0 = g + keep * (v0 - g), w1 = g + keep * (v1 - g), w2 = g + keep * (v2 - g);
+              const Vec3 h0 = KR * w0 + Kt, h1 = KR * w1 + Kt, h2 = KR * w2 + Kt;
+              bool ok = true;
+              if (linear && channels == 1) {
+                // Lattice point (a, b, c) with a + b + c = rs: along a row of
+                // constant a, the homogeneous projection moves by h1 - h2.
+                const Vec3 step = h1 - h2;
+                float* out = slot;
+                for (int a = 0; a <= rs && ok; ++a) {
+                  Vec3 h = double(a) * h0 + double(rs - a) * h2;
+                  for (int b = 0; b <= rs - a; ++b, ++out, h += step) {
+                    if (!(h.z() > 0)) { ok = false; break; }
+                    const double inv = 1.0 / h.z();
+                    if (!plane.sample_gray(h.x() * inv, h.y() * inv, out)) { ok = false; break; }
+                  }
+                }
+              } else {
+                std::size_t s = 0;
+                for (int a = 0; a <= rs && ok; ++a)
+                  for (int b = 0; b <= rs - a && ok; ++b, ++s) {
+                    const int c = rs - a - b;
+                    float* out = slot + s * channels;
+                    if (linear) {
+                      const Vec3 h = double(a) * h0 + double(b) * h1 + double(c) * h2;
+                      ok = h.z() > 0 && plane.sample(h.x() / h.z(), h.y() / h.z(), out);
+                    } else {
+                      const Vec3 X = (a * w0 + b * w1 + c * w2) / double(rs);
+                      Vec2 px;
+                      ok = cam.project(X, &px) && plane.sample(px.x(), px.y(), out);
+                    }
+                  }
+              }
+              if (!ok) slot[0] = std::numeric_limits<float>::quiet_NaN();  // view unusable here
+            }
+          });
+        }
+        const double done = (double(block_begin) + double(block_end - block_begin) * (i + 1) / cams.size()) / F;
+        report_progress(progress, 0.95 * done, "pri");
+      }
+
+      tbb::parallel_for(tbb::blocked_range<std::size_t>(block_begin, block_end), [&](const auto& r) {
+        std::vector<const float*> patches;
+        std::vector<PatchStats> stats;
+        for (std::size_t f = r.begin(); f < r.end(); ++f) {
+          const int rs = fv[f].samples_per_side;
+          const std::size_t n = std::size_t(rs + 1) * (rs + 2) / 2 * channels;
+          patches.clear();
+          for (std::size_t k = 0; k < fv[f].views.size(); ++k) {
+            const float* slot = &samples[offset[f - block_begin] + k * n];
+            if (!std::isnan(slot[0])) patches.push_back(slot);
+          }
+          result.pri_views[f] = int(patches.size());
+          if (patches.size() < 2) continue;  // unobserved
+          double sum = 0;
+          std::size_t pairs = 0;
+          if (options.measure == Measure::SSD) {
+            for (std::size_t a = 0; a < patches.size(); ++a)
+              for (std::size_t b = a + 1; b < patches.size(); ++b, ++pairs)
+                sum += ssd_error(patches[a], patches[b], n);
+          } else {
+            stats.clear();
+            for (const float* p : patches) stats.push_back(patch_stats(p, n, options.textureless_variance));
+            for (std::size_t a = 0; a < patches.size(); ++a)
+              for (std::size_t b = a + 1; b < patches.size(); ++b) {
+                if (stats[a].textureless || stats[b].textureless) continue;
+                sum += ncc_from_stats(patches[a], stats[a], patches[b], stats[b], n);
+                ++pairs;
+              }
+          }
+          if (pairs == 0) {
+            result.status[f] = FaceStatus::Textureless;
+            continue;
+          }
+          result.pri[f] = float(sum / double(pairs));
+          result.status[f] = FaceStatus::Observed;
+        }
+      });
+      block_begin = block_end;
+    }
+  });
+  for (FaceStatus s : result.status) {
+    if (s == FaceStatus::Observed) ++result.observed;
+    else if (s == FaceStatus::Unobserved) ++result.unobserved;
+    else ++result.textureless;
+  }
+  report_progress(progress, 1.0, "pri");
+  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+std::vector<Rgb8> pri_colors(const std::vector<float>& pri, double lo, double hi) {
+  std::vector<Rgb8> out(pri.size());
+  const double span = hi > lo ? hi - lo : 1.0;
+  for (std::size_t f = 0; f < pri.size(); ++f) {
+    if (std::isnan(pri[f])) {
+      out[f] = {160, 160, 160};
+      continue;
+    }
+    // Hue 120 (green, best) .. 0 (red, worst), full saturation and value.
+    const double t = std::clamp((pri[f] - lo) / span, 0.0, 1.0);
+    const double hue = 120.0 * (1.0 - t);
+    const double x = 1.0 - std::abs(std::fmod(hue / 60.0, 2.0) - 1.0);
+    double r = 0, g = 0;
+    if (hue < 60) r = 1, g = x;
+    else r = x, g = 1;
+    out[f] = {std::uint8_t(std::lround(255 * r)), std::uint8_t(std::lround(255 * g)), 0};
+  }
+  return out;
+}
+
+PriSummary summarize_pri(const PriResult& result, std::size_t worst_k, int bins) {
+  PriSummary s;
+  s.faces = result.pri.size();
+  s.observed = result.observed;
+  s.unobserved = result.unobserved;
+  s.textureless = result.textureless;
+  std::vector<std::pair<float, int>> values;
+  for (std::size_t f = 0; f < result.pri.size(); ++f)
+    if (!std::isnan(result.pri[f])) values.emplace_back(result.pri[f], int(f));
+  if (values.empty()) return s;
+  std::vector<float> sorted;
+  for (const auto& v : values) sorted.push_back(v.first);
+  std::sort(sorted.begin(), sorted.end());
+  for (double p : {0.0, 5.0, 25.0, 50.0, 75.0, 95.0, 99.0, 100.0}) {
+    // Linear interpolation between closest ranks.
+    const double pos = p / 100.0 * double(sorted.size() - 1);
+    const std::size_t i = std::size_t(pos);
+    const double frac = pos - double(i);
+    const double v = i + 1 < sorted.size() ? sorted[i] * (1 - frac) + sorted[i + 1] * frac : sorted[i];
+    s.percentiles.emplace_back(p, v);
+  }
+  s.histogram_min = sorted.front();
+  s.histogram_max = sorted.back();
+  s.histogram.assign(std::size_t(std::max(1, bins)), 0);
+  const double width = (s.histogram_max - s.histogram_min) / double(s.histogram.size());
+  for (float v : sorted) {
+    std::size_t b = width > 0 ? std::size_t((v - s.histogram_min) / width) : 0;
+    ++s.histogram[std::min(b, s.histogram.size() - 1)];
+  }
+  // Worst first; ties by face id for determinism.
+  std::sort(values.begin(), values.end(), [](const auto& a, const auto& b) {
+    return a.first != b.first ? a.first > b.first : a.second < b.second;
+  });
+  for (std::size_t k = 0; k < std::min(worst_k, values.size()); ++k)
+    s.worst.push_back({values[k].second, values[k].first, result.pri_views[std::size_t(values[k].second)]});
+  return s;
+}
+
+}  // namespace meshnbv

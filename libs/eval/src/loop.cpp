@@ -1,0 +1,575 @@
+// The incremental view-selection loop of the paper's experiment.
+#include "meshnbv/eval/loop.h"
+#include "meshnbv/enum_names.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <map>
+#include <random>
+#include <set>
+#include <sstream>
+
+#include <Eigen/Eigenvalues>
+#include <nlohmann/json.hpp>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include "meshnbv/error.h"
+#include "meshnbv/io/file_util.h"
+#include "meshnbv/io/mesh_io.h"
+#include "meshnbv/io/scene_io.h"
+#include "meshnbv/raycaster.h"
+#include "meshnbv/synth/generators.h"
+
+namespace fs = std::filesystem;
+
+namespace meshnbv::eval {
+
+constexpr detail::EnumTable<MesherKind, 2> kMeshers = {
+    {"delaunay", MesherKind::Delaunay},
+    {"poisson", MesherKind::Poisson},
+};
+
+MesherKind parse_mesher(const std::string& name) {
+  return detail::parse_enum(name, kMeshers, "mesher");
+}
+
+std::string mesher_name(MesherKind kind) {
+  return detail::enum_name(kind, kMeshers);
+}
+
+void LoopOptions::check() const {
+  if (bootstrap < 2) throw Error("loop: the bootstrap needs at least 2 views");
+  if (!bootstrap_views.empty() && int(bootstrap_views.size()) != bootstrap)
+    throw Error("loop: " + std::to_string(bootstrap_views.size()) +
+                " bootstrap views given for a bootstrap of " + std::to_string(bootstrap));
+  if (max_views != 0 && max_views < bootstrap)
+    throw Error("loop: max views (" + std::to_string(max_views) + ") is below the bootstrap (" +
+                std::to_string(bootstrap) + ")");
+  if (coverage_min_views < 1) throw Error("loop: coverage min views must be >= 1");
+  if (!(max_point_error > 0)) throw Error("loop: the maximum point error must be positive");
+  if (save_meshes != "all" && save_meshes != "last" && save_meshes != "none")
+    throw Error("loop: save meshes must be all, last or none, got '" + save_meshes + "'");
+  if (out_dir.empty()) throw Error("loop: no output folder");
+  if (poisson.depth < 4 || poisson.depth > 14) throw Error("loop: poisson depth must be in [4, 14]");
+  if (poisson.neighbours < 3) throw Error("loop: poisson needs at least 3 neighbours per normal");
+  for (double t : thresholds)
+    if (!(t > 0)) throw Error("loop: thresholds must be positive");
+  pri.check();
+  colmap.check();
+  delaunay.check();
+}
+
+namespace {
+
+// As synth/project.cpp: the finest texture period, in pixels at the median
+// camera distance (finer detail would alias differently in each view).
+constexpr double kBandLimitPixels = 8.0;
+
+std::shared_ptr<const SolidTexture> loop_texture(const TriangleMesh& truth,
+                                                 const std::vector<View>& views) {
+  std::vector<Material> materials = default_materials();
+  const double diag = truth.bounding_box().diagonal();
+  // Texture periods are in metres for buildings; a small object gets them
+  // scaled to its size, as `meshnbv synth object` does.
+  if (diag < 10.0)
+    for (auto& m : materials) m.scale *= diag / 20.0;
+  std::vector<double> footprint;
+  const Vec3 centre = truth.bounding_box().center();
+  for (const auto& v : views) footprint.push_back((v.camera.center() - centre).norm() / v.camera.fx);
+  std::nth_element(footprint.begin(), footprint.begin() + long(footprint.size() / 2), footprint.end());
+  return std::make_shared<SolidTexture>(1, materials, kBandLimitPixels * footprint[footprint.size() / 2]);
+}
+
+Image render_view(const Dataset& d, const RayCaster& caster, const PinholeCamera& camera) {
+  RenderInputs in{&d.truth, &caster, d.texture.get(), d.truth.face_attribute(synth::kMaterialAttribute)};
+  return render(in, camera, d.render);
+}
+
+std::string two_digits(int k) {
+  char b[16];
+  std::snprintf(b, sizeof(b), "%02d", k);
+  return b;
+}
+
+std::string number(double x) {
+  if (!std::isfinite(x)) return "nan";
+  std::ostringstream ss;
+  ss << std::setprecision(8) << x;
+  return ss.str();
+}
+
+std::string threshold_name(double t) {
+  std::ostringstream ss;
+  ss << std::setprecision(6) << t;
+  return ss.str();
+}
+
+std::vector<int> default_bootstrap(const std::vector<View>& views, int count) {
+  std::vector<std::pair<double, int>> by_distance;
+  const Vec3 c0 = views[0].camera.center();
+  for (std::size_t i = 1; i < views.size(); ++i)
+    by_distance.emplace_back((views[i].camera.center() - c0).norm(), int(i));
+  std::stable_sort(by_distance.begin(), by_distance.end(),
+                   [](const auto& a, const auto& b) { return a.first < b.first; });
+  std::vector<int> out{0};
+  for (int k = 0; k + 1 < count; ++k) out.push_back(by_distance[std::size_t(k)].second);
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+nlohmann::json step_json(const StepRecord& s) {
+  nlohmann::json j;
+  j["step"] = s.step;
+  j["num_views"] = s.views.size();
+  j["views"] = s.views;
+  j["added"] = s.added;
+  j["chosen_by"] = s.chosen_by;
+  j["points"] = s.points;
+  j["faces"] = s.faces;
+  nlohmann::json acc = nlohmann::json::object(), comp = nlohmann::json::object();
+  for (const auto& [p, v] : s.metrics.accuracy)
+    acc[threshold_name(p)] = std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
+  for (const auto& [t, v] : s.metrics.completeness) comp[threshold_name(t)] = v;
+  j["accuracy"] = acc;
+  j["completeness"] = comp;
+  j["mean_accuracy"] = std::isfinite(s.metrics.mean_accuracy) ? nlohmann::json(s.metrics.mean_accuracy)
+                                                             : nlohmann::json(nullptr);
+  j["samples"] = {{"reconstruction", s.metrics.reconstruction_samples},
+                  {"reference", s.metrics.reference_samples},
+                  {"spacing", s.metrics.sample_spacing}};
+  j["mesh"] = s.mesh_file;
+  j["seconds"] = {{"reconstruct", s.seconds_reconstruct},
+                  {"pri", s.seconds_pri},
+                  {"choose", s.seconds_choose},
+                  {"evaluate", s.seconds_evaluate}};
+  return j;
+}
+
+}  // namespace
+
+Dataset load_dataset(const std::string& path, const std::string& cache_dir,
+                     const ProgressCallback& progress) {
+  Dataset d;
+  d.path = path;
+  const fs::path folder(path);
+  if (fs::is_directory(folder) && fs::exists(folder / "truth.ply") && fs::exists(folder / "scene.json")) {
+    d.synthetic = true;
+    d.truth = io::read_ply((folder / "truth.ply").string());
+    if (!d.truth.face_attribute(synth::kMaterialAttribute))
+      d.truth.set_face_attribute(synth::kMaterialAttribute, std::vector<float>(d.truth.num_faces(), 0.0f));
+    const Scene scene = io::read_json_scene((folder / "scene.json").string());
+    d.texture = loop_texture(d.truth, scene.views);
+    const fs::path render_dir = fs::path(cache_dir) / "render";
+    // The render cache belongs to one dataset.
+    const std::string stamp = fs::absolute(folder).lexically_normal().string() + "\n";
+    const fs::path stamp_file = render_dir / "dataset.txt";
+    if (fs::exists(stamp_file) && io::read_file(stamp_file.string()) != stamp) fs::remove_all(render_dir);
+    fs::create_directories(render_dir);
+    io::write_atomically(stamp_file.string(), [&](std::ostream& out) { out << stamp; });
+    const RayCaster caster(d.truth);
+    for (std::size_t i = 0; i < scene.views.size(); ++i) {
+      View v = scene.views[i];
+      v.image_path = fs::absolute(render_dir / (v.label + ".png")).lexically_normal().string();
+      v.used = true;
+      if (!fs::exists(v.image_path)) render_view(d, caster, v.camera).save(v.image_path);
+      d.views.push_back(v);
+      report_progress(progress, double(i + 1) / double(scene.views.size()), "render");
+    }
+  } else {
+    const Scene scene = io::read_scene(path);
+    for (const View& v : scene.views)
+      if (v.has_image()) {
+        View u = v;
+        u.used = true;
+        d.views.push_back(u);
+      }
+  }
+  if (d.views.size() < 3)
+    throw Error("the dataset has " + std::to_string(d.views.size()) +
+                    " calibrated views with images; the loop needs at least 3",
+                path);
+  return d;
+}
+
+TriangleMesh poisson_mesh(const std::vector<SparsePoint>& points, const std::vector<Vec3>& centres,
+                          const std::string& work_dir, const std::string& colmap_executable,
+                          const PoissonOptions& options) {
+  std::vector<std::size_t> usable;
+  for (std::size_t i = 0; i < points.size(); ++i)
+    if (!points[i].views.empty() && points[i].position.allFinite()) usable.push_back(i);
+  const std::size_t k = std::size_t(options.neighbours);
+  if (usable.size() <= k) return {};
+  // Normals: PCA over the k nearest points (brute force: sparse models are small).
+  std::vector<Vec3> normals(usable.size());
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, usable.size(), 64), [&](const auto& r) {
+    std::vector<std::pair<double, std::size_t>> d(usable.size());
+    for (std::size_t i = r.begin(); i != r.end(); ++i) {
+      const Vec3& p = points[usable[i]].position;
+      for (std::size_t j = 0; j < usable.size(); ++j)
+        d[j] = {(points[usable[j]].position - p).squaredNorm(), j};
+      std::partial_sort(d.begin(), d.begin() + long(k + 1), d.end());
+      Vec3 mean = Vec3::Zero();
+      for (std::size_t n = 0; n <= k; ++n) mean += points[usable[d[n].second]].position;
+      mean /= double(k + 1);
+      Mat3 cov = Mat3::Zero();
+      for (std::size_t n = 0; n <= k; ++n) {
+        const Vec3 q = points[usable[d[n].second]].position - mean;
+        cov += q * q.transpose();
+      }
+      Eigen::SelfAdjointEigenSolver<Mat3> eig(cov);
+      Vec3 n = eig.eigenvectors().col(0);
+      Vec3 towards = Vec3::Zero();
+      for (int v : points[usable[i]].views) towards += (centres[std::size_t(v)] - p).normalized();
+      if (n.dot(towards) < 0) n = -n;
+      normals[i] = n;
+    }
+  });
+  fs::create_directories(work_dir);
+  const std::string in = fs::absolute(fs::path(work_dir) / "points_normals.ply").lexically_normal().string();
+  const std::string out = fs::absolute(fs::path(work_dir) / "poisson.ply").lexically_normal().string();
+  io::write_atomically(in, [&](std::ostream& o) {
+    o << "ply\nformat ascii 1.0\nelement vertex " << usable.size()
+      << "\nproperty float x\nproperty float y\nproperty float z\nproperty float nx\n"
+         "property float ny\nproperty float nz\nend_header\n"
+      << std::setprecision(9);
+    for (std::size_t i = 0; i < usable.size(); ++i) {
+      const Vec3& p = points[usable[i]].position;
+      o << p.x() << " " << p.y() << " " << p.z() << " " << normals[i].x() << " " << normals[i].y()
+        << " " << normals[i].z() << "\n";
+    }
+  });
+  fs::remove(out);
+  const std::string log = fs::absolute(fs::path(work_dir) / "poisson.log").lexically_normal().string();
+  std::ostringstream cmd;
+  cmd << "QT_QPA_PLATFORM=offscreen '" << colmap_executable << "' poisson_mesher --input_path '" << in
+      << "' --output_path '" << out << "' --PoissonMeshing.depth " << options.depth
+      << " --PoissonMeshing.trim " << options.trim
+      << " --PoissonMeshing.color 0 >'" << log << "' 2>&1";  // no colours in the input
+  const int rc = std::system(cmd.str().c_str());
+  if (rc != 0 || !fs::exists(out)) throw Error("colmap poisson_mesher failed (log: " + log + ")");
+  TriangleMesh mesh = io::read_ply(out);
+  mesh.face_attributes.clear();
+  mesh.face_colors.clear();
+  return mesh;
+}
+
+Reconstruction reconstruct(const ColmapWorkspace& workspace, const std::vector<int>& selected,
+                           const std::string& work_dir, const LoopOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  Reconstruction r;
+  r.sparse = workspace.triangulate(selected, work_dir);
+  std::vector<SparsePoint> points;
+  for (std::size_t i = 0; i < r.sparse.points.size(); ++i)
+    if (r.sparse.reprojection_errors[i] <= options.max_point_error) points.push_back(r.sparse.points[i]);
+  std::vector<Vec3> centres;
+  for (const View& v : workspace.views()) centres.push_back(v.camera.center());
+  if (options.mesher == MesherKind::Delaunay)
+    r.mesh = mesh_from_visibility(points, centres, options.delaunay).mesh;
+  else
+    r.mesh = poisson_mesh(points, centres, work_dir, options.colmap.executable, options.poisson);
+  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return r;
+}
+
+Image snapshot(const TriangleMesh& mesh, const PinholeCamera& viewer, double zoom_out) {
+  PinholeCamera cam = viewer;
+  cam.fx /= zoom_out;
+  cam.fy /= zoom_out;
+  if (mesh.empty()) {
+    Image blank(cam.width, cam.height, 3);
+    std::fill(blank.data(), blank.data() + blank.bytes(), std::uint8_t(255));
+    return blank;
+  }
+  std::vector<Rgb8> colours(mesh.num_faces());
+  for (std::size_t f = 0; f < mesh.num_faces(); ++f)
+    colours[f] = mesh.face_normal(f).dot(cam.center() - mesh.face_centroid(f)) >= 0 ? Rgb8{200, 200, 200}
+                                                                                      : Rgb8{220, 60, 50};
+  const RayCaster caster(mesh);
+  RenderInputs in;
+  in.mesh = &mesh;
+  in.raycaster = &caster;
+  in.face_colors = &colours;
+  RenderOptions o;
+  o.background = Vec3(1, 1, 1);
+  o.light_direction = -cam.forward() + 0.5 * cam.down() * -1.0;
+  return render(in, cam, o);
+}
+
+std::string steps_csv(const LoopResult& result) {
+  std::ostringstream ss;
+  ss << "step,num_views,added,chosen_by,points,faces";
+  if (!result.steps.empty()) {
+    for (const auto& [p, v] : result.steps[0].metrics.accuracy) ss << ",accuracy_" << threshold_name(p);
+    for (const auto& [t, v] : result.steps[0].metrics.completeness)
+      ss << ",completeness_" << threshold_name(t);
+  }
+  ss << ",mean_accuracy,seconds_reconstruct,seconds_pri,seconds_choose,seconds_evaluate\n";
+  for (const StepRecord& s : result.steps) {
+    ss << s.step << "," << s.views.size() << "," << s.added << "," << s.chosen_by << "," << s.points
+       << "," << s.faces;
+    for (const auto& [p, v] : s.metrics.accuracy) ss << "," << number(v);
+    for (const auto& [t, v] : s.metrics.completeness) ss << "," << number(v);
+    ss << "," << number(s.metrics.mean_accuracy) << "," << number(s.seconds_reconstruct) << ","
+       << number(s.seconds_pri) << "," << number(s.seconds_choose) << ","
+       << number(s.seconds_evaluate) << "\n";
+  }
+  return ss.str();
+}
+
+LoopResult run_loop(const Dataset& dataset, const LoopOptions& options,
+                    const ProgressCallback& progress,
+                    const std::function<void(const StepRecord&)>& on_step) {
+  const auto start = std::chrono::steady_clock::now();
+  options.check();
+  const bool continuous =
+      options.strategy == Strategy::Nbv && options.nbv_candidates != CandidateMode::Given;
+  if (continuous && !dataset.synthetic)
+    throw Error("nbv with sampled or refined candidates needs a synthetic dataset (a folder made by "
+                "`meshnbv synth`): only there can a picture be taken at a new pose");
+  const std::size_t n = dataset.views.size();
+  if (std::size_t(options.bootstrap) >= n && !continuous)
+    throw Error("loop: the bootstrap (" + std::to_string(options.bootstrap) +
+                ") leaves no candidate among " + std::to_string(n) + " views");
+  const fs::path out(options.out_dir);
+  const fs::path cache = options.cache_dir.empty() ? out / "cache" : fs::path(options.cache_dir);
+  const fs::path work = out / "work";
+  fs::create_directories(out / "meshes");
+  fs::create_directories(work);
+
+  LoopResult result;
+  result.dataset = dataset.path;
+  result.synthetic = dataset.synthetic;
+
+  // Features and matches of the dataset's views (cached).
+  ColmapWorkspace ws((cache / "colmap").string(), dataset.views, options.colmap, progress);
+  if (continuous) ws.detach((work / "colmap").string());
+
+  // The reference.
+  TriangleMesh reference;
+  std::vector<PinholeCamera> dataset_cams;
+  for (const View& v : dataset.views) dataset_cams.push_back(v.camera);
+  if (dataset.synthetic) {
+    reference = observable_part(dataset.truth, dataset_cams, 1);
+    result.reference = "ground truth (truth.ply), faces seen by at least one of the " +
+                       std::to_string(n) + " dataset views";
+    result.thresholds = options.thresholds;
+    if (result.thresholds.empty()) {
+      const double diag = dataset.truth.bounding_box().diagonal();
+      result.thresholds = {0.005 * diag, 0.01 * diag, 0.02 * diag};
+    }
+  } else {
+    std::ostringstream key;
+    key << "reference_v2_" << mesher_name(options.mesher) << "_" << options.max_point_error;
+    if (options.mesher == MesherKind::Delaunay)
+      key << "_" << labelling_name(options.delaunay.labelling) << "_" << options.delaunay.surface_weight
+          << "_" << options.delaunay.min_component_share << "_" << options.delaunay.max_spread << "_"
+          << options.delaunay.max_isolation << "_" << facet_support_name(options.delaunay.facet_support) << "_"
+          << options.delaunay.min_views_per_point;
+    else
+      key << "_" << options.poisson.depth << "_" << options.poisson.trim;
+    const fs::path ref_file = cache / (key.str() + ".ply");
+    if (fs::exists(ref_file)) {
+      reference = io::read_ply(ref_file.string());
+    } else {
+      report_progress(progress, 0.0, "reference");
+      std::vector<int> all(n);
+      for (std::size_t i = 0; i < n; ++i) all[i] = int(i);
+      reference = reconstruct(ws, all, (cache / "reference_work").string(), options).mesh;
+      if (reference.empty()) throw Error("the reconstruction from all views is empty: no reference");
+      io::write_ply(reference, ref_file.string());
+    }
+    result.reference = "reconstruction from all " + std::to_string(n) +
+                       " views with the same backend (" + ref_file.string() + ")";
+    result.thresholds = options.thresholds.empty()
+                            ? std::vector<double>{0.00075, 0.00125, 0.00175}
+                            : options.thresholds;
+  }
+  io::write_ply(reference, (out / "reference.ply").string());
+  // Snapshots from view 0 and the view farthest from it.
+  std::size_t snapshot_views[2] = {0, 0};
+  for (std::size_t i = 1; i < n; ++i)
+    if ((dataset_cams[i].center() - dataset_cams[0].center()).norm() >
+        (dataset_cams[snapshot_views[1]].center() - dataset_cams[0].center()).norm())
+      snapshot_views[1] = i;
+  if (options.snapshots) {
+    snapshot(reference, dataset_cams[snapshot_views[0]]).save((out / "reference_a.png").string());
+    snapshot(reference, dataset_cams[snapshot_views[1]]).save((out / "reference_b.png").string());
+  }
+  EvaluationOptions eo = options.evaluation;
+  eo.thresholds = result.thresholds;
+  eo.threads = options.pri.threads;
+
+  // Selection state.
+  std::vector<int> selected = options.bootstrap_views.empty()
+                                  ? default_bootstrap(dataset.views, options.bootstrap)
+                                  : options.bootstrap_views;
+  for (int i : selected)
+    if (i < 0 || std::size_t(i) >= n)
+      throw Error("loop: bootstrap view " + std::to_string(i) + " is not among the " +
+                  std::to_string(n) + " views");
+  if (std::set<int>(selected.begin(), selected.end()).size() != selected.size())
+    throw Error("loop: the bootstrap views repeat");
+  std::vector<int> remaining;
+  for (std::size_t i = 0; i < n; ++i)
+    if (std::find(selected.begin(), selected.end(), int(i)) == selected.end()) remaining.push_back(int(i));
+  const std::size_t max_views = options.max_views > 0 ? std::size_t(options.max_views) : n;
+  const Vec3 centre = convergence_point(dataset_cams);
+  std::mt19937_64 rng(options.seed);
+  std::shared_ptr<ImageCache> images = std::make_shared<ImageCache>();
+  std::unique_ptr<RayCaster> truth_caster;
+  if (continuous) {
+    truth_caster = std::make_unique<RayCaster>(dataset.truth);
+    fs::create_directories(out / "images");
+  }
+
+  std::string added, chosen_by;
+  double seconds_pri = 0, seconds_choose = 0;
+  for (int step = 0;; ++step) {
+    report_progress(progress, double(selected.size()) / double(max_views), "loop");
+    StepRecord rec;
+    rec.step = step;
+    for (int i : selected) rec.views.push_back(ws.views()[std::size_t(i)].label);
+    rec.added = added;
+    rec.chosen_by = chosen_by;
+    rec.seconds_pri = seconds_pri;
+    rec.seconds_choose = seconds_choose;
+    const std::string step_dir = (work / ("step_" + two_digits(step))).string();
+    const Reconstruction recon = reconstruct(ws, selected, step_dir, options);
+    if (!options.keep_work) fs::remove_all(step_dir);
+    rec.seconds_reconstruct = recon.seconds;
+    rec.points = recon.sparse.points.size();
+    rec.faces = recon.mesh.num_faces();
+    rec.metrics = evaluate_reconstruction(recon.mesh, reference, eo);
+    rec.seconds_evaluate = rec.metrics.seconds;
+    const bool last = selected.size() >= max_views || (!continuous && remaining.empty());
+    if (options.save_meshes == "all" || (options.save_meshes == "last" && last)) {
+      rec.mesh_file = "meshes/step_" + two_digits(step) + "_views_" + two_digits(int(selected.size())) + ".ply";
+      io::write_ply(recon.mesh, (out / rec.mesh_file).string());
+      if (options.snapshots) {
+        const std::string stem = (out / rec.mesh_file).replace_extension("").string();
+        snapshot(recon.mesh, dataset.views[snapshot_views[0]].camera).save(stem + "_a.png");
+        snapshot(recon.mesh, dataset.views[snapshot_views[1]].camera).save(stem + "_b.png");
+      }
+    }
+    result.steps.push_back(rec);
+    result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    // Results so far, rewritten after every step.
+    nlohmann::json j;
+    j["format"] = "meshnbv-loop";
+    j["version"] = 1;
+    j["dataset"] = result.dataset;
+    j["synthetic"] = result.synthetic;
+    j["strategy"] = strategy_name(options.strategy);
+    j["options"] = {{"bootstrap", options.bootstrap},
+                    {"max_views", max_views},
+                    {"seed", options.seed},
+                    {"candidates", candidate_mode_name(options.nbv_candidates)},
+                    {"measure", measure_name(options.pri.measure)},
+                    {"worst", options.suggest.worst_k},
+                    {"weights", options.suggest.energy.weights},
+                    {"mesher", mesher_name(options.mesher)},
+                    {"labelling", labelling_name(options.delaunay.labelling)},
+                    {"surface_weight", options.delaunay.surface_weight},
+                    {"facet_support", facet_support_name(options.delaunay.facet_support)},
+                    {"min_point_views", options.delaunay.min_views_per_point},
+                    {"max_point_error", options.max_point_error},
+                    {"matcher", options.colmap.matcher}};
+    j["reference"] = result.reference;
+    j["thresholds"] = result.thresholds;
+    j["percentiles"] = eo.percentiles;
+    j["steps"] = nlohmann::json::array();
+    for (const auto& s : result.steps) j["steps"].push_back(step_json(s));
+    j["seconds"] = result.seconds;
+    io::write_atomically((out / "loop.json").string(), [&](std::ostream& o) { o << j.dump(2) << "\n"; });
+    io::write_atomically((out / "steps.csv").string(), [&](std::ostream& o) { o << steps_csv(result); });
+    if (on_step) on_step(rec);
+    if (last) break;
+
+    // Choose the next view.
+    seconds_pri = seconds_choose = 0;
+    auto t0 = std::chrono::steady_clock::now();
+    std::vector<PinholeCamera> sel_cams, rem_cams;
+    for (int i : selected) sel_cams.push_back(ws.views()[std::size_t(i)].camera);
+    for (int i : remaining) rem_cams.push_back(ws.views()[std::size_t(i)].camera);
+    int pick = -1;  // index into remaining
+    std::string by = strategy_name(options.strategy);
+    bool take_new_pose = false;
+    PinholeCamera new_pose;
+    switch (options.strategy) {
+      case Strategy::Uniform: pick = pick_uniform(sel_cams, rem_cams, centre); break;
+      case Strategy::Random: pick = pick_random(remaining.size(), rng); break;
+      case Strategy::Coverage:
+        if (!recon.mesh.empty()) pick = pick_coverage(recon.mesh, sel_cams, rem_cams, options.coverage_min_views);
+        break;
+      case Strategy::Nbv: {
+        if (recon.mesh.empty()) break;
+        Scene scene;
+        scene.mesh = recon.mesh;
+        scene.images = images;
+        for (int i : selected) scene.views.push_back(ws.views()[std::size_t(i)]);
+        const auto tp = std::chrono::steady_clock::now();
+        const PriResult pri = compute_pri(scene, options.pri);
+        seconds_pri = std::chrono::duration<double>(std::chrono::steady_clock::now() - tp).count();
+        if (pri.observed == 0) break;
+        SuggestOptions so = options.suggest;
+        so.top = 1;
+        so.mode = options.nbv_candidates;
+        so.threads = options.pri.threads;
+        std::vector<View> given;
+        if (!continuous) {
+          if (remaining.empty()) break;
+          for (int i : remaining) {
+            View v = ws.views()[std::size_t(i)];
+            v.used = false;
+            given.push_back(v);
+          }
+        }
+        const SuggestResult s = suggest_views(scene, pri.pri, so, given);
+        if (s.suggestions.empty()) break;
+        if (continuous) {
+          take_new_pose = true;
+          new_pose = s.suggestions[0].camera;
+        } else {
+          for (std::size_t r = 0; r < remaining.size(); ++r)
+            if (ws.views()[std::size_t(remaining[r])].label == s.suggestions[0].source) pick = int(r);
+        }
+        break;
+      }
+    }
+    if (take_new_pose) {
+      View v;
+      v.label = "nbv_" + two_digits(step + 1);
+      v.camera = new_pose;
+      v.image_path = fs::absolute(out / "images" / (v.label + ".png")).lexically_normal().string();
+      render_view(dataset, *truth_caster, new_pose).save(v.image_path);
+      selected.push_back(ws.add_view(v, selected));
+      added = v.label;
+      chosen_by = by;
+    } else {
+      if (pick < 0 && !remaining.empty()) {
+        // No reconstruction (or nothing observed) to reason about yet.
+        pick = pick_uniform(sel_cams, rem_cams, centre);
+        by += " (fallback: uniform)";
+      }
+      if (pick < 0) break;  // continuous mode without any dataset view left
+      const int chosen = remaining[std::size_t(pick)];
+      remaining.erase(remaining.begin() + pick);
+      selected.push_back(chosen);
+      added = ws.views()[std::size_t(chosen)].label;
+      chosen_by = by;
+    }
+    seconds_choose =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() - seconds_pri;
+  }
+  if (!options.keep_work) fs::remove_all(work);
+  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+}  // namespace meshnbv::eval

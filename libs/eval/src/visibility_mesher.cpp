@@ -1,0 +1,450 @@
+// Delaunay + visibility + graph cut surface reconstruction (Labatut et al.
+// 2007). One of the few translation units with CGAL (slow to compile).
+#include "meshnbv/eval/visibility_mesher.h"
+#include "meshnbv/enum_names.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <numeric>
+#include <unordered_map>
+
+// Boost.Graph trips GCC 12's flow analysis at the point of inlining, where
+// a push/pop around the includes does not reach.
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wshadow"
+#pragma GCC diagnostic ignored "-Wpedantic"
+#pragma GCC diagnostic ignored "-Wunused-parameter"
+#include <CGAL/Delaunay_triangulation_3.h>
+#include <CGAL/Delaunay_triangulation_cell_base_3.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Triangulation_cell_base_with_info_3.h>
+#include <CGAL/Triangulation_vertex_base_with_info_3.h>
+#include <boost/graph/adjacency_list.hpp>
+#include <boost/graph/boykov_kolmogorov_max_flow.hpp>
+#pragma GCC diagnostic pop
+
+#include "meshnbv/error.h"
+
+namespace meshnbv::eval {
+
+constexpr detail::EnumTable<Labelling, 2> kLabellings = {
+    {"graphcut", Labelling::GraphCut},
+    {"vote", Labelling::Vote},
+};
+
+Labelling parse_labelling(const std::string& name) {
+  return detail::parse_enum(name, kLabellings, "labelling");
+}
+
+std::string labelling_name(Labelling labelling) {
+  return detail::enum_name(labelling, kLabellings);
+}
+
+constexpr detail::EnumTable<FacetSupport, 4> kFacetSupports = {
+    {"all", FacetSupport::All},
+    {"any", FacetSupport::Any},
+    {"edges", FacetSupport::Edges},
+    {"common", FacetSupport::Common},
+};
+
+FacetSupport parse_facet_support(const std::string& name) {
+  return detail::parse_enum(name, kFacetSupports, "facet support");
+}
+
+std::string facet_support_name(FacetSupport support) {
+  return detail::enum_name(support, kFacetSupports);
+}
+
+void VisibilityMesherOptions::check() const {
+  if (!(visibility_weight > 0)) throw Error("mesher: the visibility weight must be positive");
+  if (!(surface_weight >= 0)) throw Error("mesher: the surface weight must be >= 0");
+  if (min_free_votes < 1) throw Error("mesher: min free votes must be >= 1");
+  if (min_views_per_point < 1) throw Error("mesher: min views per point must be >= 1");
+  if (!(max_spread >= 0) || !(max_isolation >= 0))
+    throw Error("mesher: the outlier limits must be >= 0 (0 = off)");
+  if (!(min_component_share >= 0 && min_component_share <= 1))
+    throw Error("mesher: the minimum component share must be in [0, 1]");
+}
+
+namespace {
+
+using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+using VertexBase = CGAL::Triangulation_vertex_base_with_info_3<int, Kernel>;
+using CellBase = CGAL::Triangulation_cell_base_with_info_3<
+    int, Kernel, CGAL::Delaunay_triangulation_cell_base_3<Kernel>>;
+using Tds = CGAL::Triangulation_data_structure_3<VertexBase, CellBase>;
+using Delaunay = CGAL::Delaunay_triangulation_3<Kernel, Tds>;
+using Point = Kernel::Point_3;
+using CellHandle = Delaunay::Cell_handle;
+using VertexHandle = Delaunay::Vertex_handle;
+using SegmentCells = Delaunay::Segment_cell_iterator;
+
+Point to_cgal(const Vec3& p) { return Point(p.x(), p.y(), p.z()); }
+Vec3 from_cgal(const Point& p) { return Vec3(p.x(), p.y(), p.z()); }
+
+// Per cell: terminal weights, and the capacity of the edge to each of its
+// four neighbours (edge c -> neighbour(i) in slot 4c + i).
+struct Weights {
+  std::vector<double> source, sink, facet;
+  std::vector<int> votes;
+  explicit Weights(std::size_t cells)
+      : source(cells, 0.0), sink(cells, 0.0), facet(4 * cells, 0.0), votes(cells, 0) {}
+};
+
+// The labelling by s-t minimum cut: true = free (source side).
+std::vector<char> label_by_graph_cut(const Delaunay& dt, const std::vector<CellHandle>& cells,
+                                     const Weights& w, double surface_cost) {
+  using Traits = boost::adjacency_list_traits<boost::vecS, boost::vecS, boost::directedS>;
+  using Graph = boost::adjacency_list<
+      boost::vecS, boost::vecS, boost::directedS,
+      boost::property<boost::vertex_color_t, boost::default_color_type,
+                      boost::property<boost::vertex_distance_t, long,
+                                      boost::property<boost::vertex_predecessor_t,
+                                                      Traits::edge_descriptor>>>,
+      boost::property<boost::edge_capacity_t, double,
+                      boost::property<boost::edge_residual_capacity_t, double,
+                                      boost::property<boost::edge_reverse_t,
+                                                      Traits::edge_descriptor>>>>;
+  const std::size_t n = cells.size();
+  Graph g(n + 2);
+  const auto s = static_cast<Traits::vertex_descriptor>(n);
+  const auto t = static_cast<Traits::vertex_descriptor>(n + 1);
+  auto capacity = boost::get(boost::edge_capacity, g);
+  auto reverse = boost::get(boost::edge_reverse, g);
+  auto add_pair = [&](std::size_t u, std::size_t v, double uv, double vu) {
+    const auto e1 = boost::add_edge(u, v, g).first;
+    const auto e2 = boost::add_edge(v, u, g).first;
+    capacity[e1] = uv;
+    capacity[e2] = vu;
+    reverse[e1] = e2;
+    reverse[e2] = e1;
+  };
+  double total = 0;
+  for (std::size_t c = 0; c < n; ++c) total += w.source[c] + w.sink[c];
+  const double infinite = 10.0 * (total + 1.0);
+  for (std::size_t c = 0; c < n; ++c) {
+    const CellHandle ch = cells[c];
+    const bool inf = dt.is_infinite(ch);
+    const double src = inf ? infinite : w.source[c];
+    if (src > 0) add_pair(s, c, src, 0.0);
+    if (!inf && w.sink[c] > 0) add_pair(c, t, w.sink[c], 0.0);
+    for (int i = 0; i < 4; ++i) {
+      const CellHandle nb = ch->neighbor(i);
+      const auto m = static_cast<std::size_t>(nb->info());
+      if (m < c) continue;  // each facet once
+      const int j = nb->index(ch);
+      const bool both_infinite = inf && dt.is_infinite(nb);
+      const double extra = both_infinite ? 0.0 : surface_cost;
+      const double cm = w.facet[4 * c + std::size_t(i)] + extra;
+      const double mc = w.facet[4 * m + std::size_t(j)] + extra;
+      if (cm > 0 || mc > 0) add_pair(c, m, cm, mc);
+    }
+  }
+  boost::boykov_kolmogorov_max_flow(g, s, t);
+  auto color = boost::get(boost::vertex_color, g);
+  std::vector<char> free(n, 0);
+  const auto source_colour = boost::get(color, s);
+  for (std::size_t c = 0; c < n; ++c) free[c] = boost::get(color, c) == source_colour ? 1 : 0;
+  return free;
+}
+
+// Points far from the bulk: distance to the per-axis median beyond
+// `spread` times the 90th percentile of those distances.
+void drop_far_points(const std::vector<SparsePoint>& points, double spread, std::vector<char>* usable,
+                     std::size_t* dropped) {
+  if (spread <= 0) return;
+  std::vector<double> xs[3];
+  for (std::size_t i = 0; i < points.size(); ++i)
+    if ((*usable)[i])
+      for (int k = 0; k < 3; ++k) xs[k].push_back(points[i].position[k]);
+  if (xs[0].size() < 10) return;
+  Vec3 median;
+  for (int k = 0; k < 3; ++k) {
+    std::nth_element(xs[k].begin(), xs[k].begin() + long(xs[k].size() / 2), xs[k].end());
+    median[k] = xs[k][xs[k].size() / 2];
+  }
+  std::vector<double> d;
+  for (std::size_t i = 0; i < points.size(); ++i)
+    if ((*usable)[i]) d.push_back((points[i].position - median).norm());
+  const std::size_t at = std::min(d.size() - 1, std::size_t(0.9 * double(d.size())));
+  std::nth_element(d.begin(), d.begin() + long(at), d.end());
+  const double limit = spread * d[at];
+  for (std::size_t i = 0; i < points.size(); ++i)
+    if ((*usable)[i] && (points[i].position - median).norm() > limit) {
+      (*usable)[i] = 0;
+      ++*dropped;
+    }
+}
+
+// Faces grouped into pieces connected through shared vertices.
+void drop_small_components(TriangleMesh* mesh, double min_share) {
+  if (mesh->faces.empty() || min_share <= 0) return;
+  std::vector<int> parent(mesh->num_vertices());
+  std::iota(parent.begin(), parent.end(), 0);
+  auto find = [&](int x) {
+    while (parent[std::size_t(x)] != x) {
+      parent[std::size_t(x)] = parent[std::size_t(parent[std::size_t(x)])];
+      x = parent[std::size_t(x)];
+    }
+    return x;
+  };
+  for (const Face& f : mesh->faces) {
+    const int a = find(f[0]);
+    parent[std::size_t(find(f[1]))] = a;
+    parent[std::size_t(find(f[2]))] = a;
+  }
+  std::unordered_map<int, std::size_t> count;
+  for (const Face& f : mesh->faces) ++count[find(f[0])];
+  std::size_t largest = 0;
+  for (const auto& [root, k] : count) largest = std::max(largest, k);
+  const double keep = min_share * double(largest);
+  std::vector<Face> kept;
+  for (const Face& f : mesh->faces)
+    if (double(count[find(f[0])]) >= keep) kept.push_back(f);
+  // Compact the vertices.
+  std::vector<int> remap(mesh->num_vertices(), -1);
+  std::vector<Vec3> vertices;
+  for (Face& f : kept)
+    for (int& v : f) {
+      if (remap[std::size_t(v)] < 0) {
+        remap[std::size_t(v)] = int(vertices.size());
+        vertices.push_back(mesh->vertices[std::size_t(v)]);
+      }
+      v = remap[std::size_t(v)];
+    }
+  mesh->faces = std::move(kept);
+  mesh->vertices = std::move(vertices);
+}
+
+}  // namespace
+
+VisibilityMesherResult mesh_from_visibility(const std::vector<SparsePoint>& points,
+                                            const std::vector<Vec3>& centres,
+                                            const VisibilityMesherOptions& options,
+                                            const ProgressCallback& progress) {
+  const auto start = std::chrono::steady_clock::now();
+  options.check();
+  VisibilityMesherResult result;
+  auto finish = [&]() {
+    result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return result;
+  };
+
+  // 1. Delaunay triangulation of the usable points, without outliers.
+  std::vector<char> usable(points.size(), 0);
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const SparsePoint& p = points[i];
+    for (int v : p.views)
+      if (v < 0 || std::size_t(v) >= centres.size())
+        throw Error("mesher: point " + std::to_string(i) + " names camera " + std::to_string(v) +
+                    " of " + std::to_string(centres.size()));
+    usable[i] = int(p.views.size()) >= options.min_views_per_point && p.position.allFinite();
+  }
+  drop_far_points(points, options.max_spread, &usable, &result.outliers);
+  Delaunay dt;
+  std::vector<VertexHandle> handle(points.size());
+  auto triangulate = [&]() {
+    dt.clear();
+    std::fill(handle.begin(), handle.end(), VertexHandle());
+    CellHandle hint;
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      if (!usable[i]) continue;
+      const Point q = to_cgal(points[i].position);
+      handle[i] = hint == CellHandle() ? dt.insert(q) : dt.insert(q, hint);
+      hint = handle[i]->cell();
+    }
+  };
+  triangulate();
+  if (options.max_isolation > 0 && dt.dimension() == 3) {
+    // Mean of the 3 shortest Delaunay edges of each point.
+    std::vector<double> isolation(points.size(), 0.0), all;
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      if (!usable[i]) continue;
+      std::vector<VertexHandle> nb;
+      dt.finite_adjacent_vertices(handle[i], std::back_inserter(nb));
+      std::vector<double> d;
+      for (const auto& u : nb) d.push_back((from_cgal(u->point()) - points[i].position).norm());
+      std::sort(d.begin(), d.end());
+      const std::size_t k = std::min<std::size_t>(3, d.size());
+      double sum = 0;
+      for (std::size_t j = 0; j < k; ++j) sum += d[j];
+      isolation[i] = k ? sum / double(k) : 0.0;
+      all.push_back(isolation[i]);
+    }
+    if (!all.empty()) {
+      std::nth_element(all.begin(), all.begin() + long(all.size() / 2), all.end());
+      const double limit = options.max_isolation * all[all.size() / 2];
+      std::size_t dropped = 0;
+      for (std::size_t i = 0; i < points.size(); ++i)
+        if (usable[i] && isolation[i] > limit) {
+          usable[i] = 0;
+          ++dropped;
+        }
+      result.outliers += dropped;
+      if (dropped) triangulate();
+    }
+  }
+  result.points = dt.number_of_vertices();
+  if (dt.dimension() < 3) return finish();
+  report_progress(progress, 0.2, "delaunay");
+
+  int next_vertex_id = 0;
+  for (auto v = dt.finite_vertices_begin(); v != dt.finite_vertices_end(); ++v)
+    v->info() = next_vertex_id++;
+  // The cameras of each vertex, sorted (duplicate points share a vertex and their views).
+  std::vector<std::vector<int>> sorted_views(static_cast<std::size_t>(next_vertex_id));
+  for (std::size_t i = 0; i < points.size(); ++i)
+    if (handle[i] != VertexHandle()) {
+      auto& views = sorted_views[std::size_t(handle[i]->info())];
+      views.insert(views.end(), points[i].views.begin(), points[i].views.end());
+    }
+  for (auto& views : sorted_views) {
+    std::sort(views.begin(), views.end());
+    views.erase(std::unique(views.begin(), views.end()), views.end());
+  }
+  std::vector<CellHandle> cells;
+  cells.reserve(dt.number_of_cells() + 64);
+  for (auto c = dt.all_cells_begin(); c != dt.all_cells_end(); ++c) {
+    c->info() = int(cells.size());
+    cells.push_back(c);
+  }
+  result.tetrahedra = dt.number_of_finite_cells();
+
+  // 2. Visibility: free facets and cells in front of each point, matter behind.
+  Weights w(cells.size());
+  const double alpha = options.visibility_weight;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    if (handle[i] == VertexHandle()) continue;
+    const VertexHandle v = handle[i];
+    const Vec3 p = points[i].position;
+    for (int view : points[i].views) {
+      const Vec3 c = centres[std::size_t(view)];
+      if ((c - p).norm() <= 0) continue;
+      ++result.rays;
+      try {
+        // Towards the camera: every crossed facet should not be surface.
+        // The walk starts just off the point: CGAL's traverser started at a
+        // vertex on the convex hull may begin in any incident finite cell,
+        // even when the segment leaves the hull at once.
+        const Vec3 dir = (c - p).normalized();
+        const double eps = 1e-7 * (c - p).norm();
+        const Point ray_start = to_cgal(p + eps * dir);
+        const CellHandle first = dt.locate(ray_start, v->cell());
+        if (!dt.is_infinite(first)) {  // else the ray leaves the (convex) hull for good
+          SegmentCells it(&dt, ray_start, to_cgal(c), first);
+          const SegmentCells end = dt.segment_traverser_cells_end();
+          CellHandle previous;
+          bool left_hull = false;
+          for (; it != end; ++it) {
+            const CellHandle cell = it;
+            const auto id = std::size_t(cell->info());
+            int facet = -1;
+            if (previous != CellHandle() && cell->has_neighbor(previous, facet))
+              w.facet[4 * id + std::size_t(facet)] += alpha;
+            if (dt.is_infinite(cell)) {
+              left_hull = true;
+              break;
+            }
+            ++w.votes[id];
+            previous = cell;
+          }
+          if (!left_hull && previous != CellHandle()) w.source[std::size_t(previous->info())] += alpha;
+        }
+        // Just behind the point: matter.
+        const CellHandle back = dt.locate(to_cgal(p - eps * dir), v->cell());
+        if (!dt.is_infinite(back)) w.sink[std::size_t(back->info())] += alpha;
+      } catch (const std::exception&) {
+        ++result.failed_rays;  // a degenerate configuration CGAL refused: skip the ray
+      }
+    }
+    if (i % 256 == 0) report_progress(progress, 0.2 + 0.6 * double(i) / double(points.size()), "visibility");
+  }
+
+  // 3. Labels.
+  std::vector<char> free;
+  if (options.labelling == Labelling::Vote) {
+    free.resize(cells.size());
+    for (std::size_t c = 0; c < cells.size(); ++c)
+      free[c] = dt.is_infinite(cells[c]) || w.votes[c] >= options.min_free_votes;
+  } else {
+    std::vector<double> used;
+    for (double x : w.facet)
+      if (x > 0) used.push_back(x);
+    double median = alpha;
+    if (!used.empty()) {
+      std::nth_element(used.begin(), used.begin() + long(used.size() / 2), used.end());
+      median = used[used.size() / 2];
+    }
+    free = label_by_graph_cut(dt, cells, w, options.surface_weight * median);
+  }
+  report_progress(progress, 0.9, "labelling");
+
+  // 4. The free/occupied boundary, normals towards the free side.
+  std::vector<int> vertex_out(std::size_t(next_vertex_id), -1);
+  TriangleMesh& mesh = result.mesh;
+  auto out_vertex = [&](const VertexHandle& vh) {
+    int& slot = vertex_out[std::size_t(vh->info())];
+    if (slot < 0) {
+      slot = int(mesh.vertices.size());
+      mesh.vertices.push_back(from_cgal(vh->point()));
+    }
+    return slot;
+  };
+  for (std::size_t c = 0; c < cells.size(); ++c) {
+    if (free[c]) {
+      ++result.free_tetrahedra;
+      continue;
+    }
+    ++result.occupied_tetrahedra;
+    const CellHandle ch = cells[c];
+    for (int i = 0; i < 4; ++i) {
+      if (!free[std::size_t(ch->neighbor(i)->info())]) continue;
+      Face f{out_vertex(ch->vertex((i + 1) % 4)), out_vertex(ch->vertex((i + 2) % 4)),
+             out_vertex(ch->vertex((i + 3) % 4))};
+      const Vec3& a = mesh.vertices[std::size_t(f[0])];
+      const Vec3 n = (mesh.vertices[std::size_t(f[1])] - a).cross(mesh.vertices[std::size_t(f[2])] - a);
+      const bool flip = n.dot(from_cgal(ch->vertex(i)->point()) - a) > 0;
+      if (flip) std::swap(f[1], f[2]);
+      if (options.facet_support != FacetSupport::All) {
+        const Vec3 outward = flip ? Vec3(-n) : n;
+        const Vec3 centroid = (a + mesh.vertices[std::size_t(f[1])] + mesh.vertices[std::size_t(f[2])]) / 3.0;
+        const std::vector<int>* v[3];
+        for (int k = 0; k < 3; ++k) v[k] = &sorted_views[std::size_t(ch->vertex((i + 1 + k) % 4)->info())];
+        auto shares = [](const std::vector<int>& x, const std::vector<int>& y) {
+          for (int view : x)
+            if (std::binary_search(y.begin(), y.end(), view)) return true;
+          return false;
+        };
+        auto faces_it = [&](int view) { return outward.dot(centres[std::size_t(view)] - centroid) > 0; };
+        bool supported = false;
+        if (options.facet_support == FacetSupport::Common) {
+          for (int view : *v[0])
+            if (std::binary_search(v[1]->begin(), v[1]->end(), view) &&
+                std::binary_search(v[2]->begin(), v[2]->end(), view) && faces_it(view)) {
+              supported = true;
+              break;
+            }
+        } else {
+          for (int k = 0; k < 3 && !supported; ++k)
+            for (int view : *v[k])
+              if (faces_it(view)) {
+                supported = true;
+                break;
+              }
+          if (supported && options.facet_support == FacetSupport::Edges)
+            supported = shares(*v[0], *v[1]) && shares(*v[1], *v[2]) && shares(*v[2], *v[0]);
+        }
+        if (!supported) continue;
+      }
+      mesh.faces.push_back(f);
+    }
+  }
+  result.free_tetrahedra -= std::min(result.free_tetrahedra, cells.size() - result.tetrahedra);
+  drop_small_components(&mesh, options.min_component_share);
+  report_progress(progress, 1.0, "mesh");
+  return finish();
+}
+
+}  // namespace meshnbv::eval

@@ -1,0 +1,145 @@
+#include "meshnbv/io/scene_io.h"
+#include "meshnbv/enum_names.h"
+
+#include <filesystem>
+
+#include "meshnbv/error.h"
+#include "meshnbv/io/file_util.h"
+#include "meshnbv/io/mesh_io.h"
+
+namespace fs = std::filesystem;
+
+namespace meshnbv::io {
+
+constexpr detail::EnumTable<SceneFormat, 6> kSceneFormats = {
+    {"auto", SceneFormat::Auto},
+    {"mlp", SceneFormat::Mlp},
+    {"json", SceneFormat::Json},
+    {"middlebury", SceneFormat::Middlebury},
+    {"colmap", SceneFormat::Colmap},
+    {"bundler", SceneFormat::Bundler},
+};
+
+SceneFormat parse_scene_format(const std::string& name) {
+  return detail::parse_enum(name, kSceneFormats, "scene format");
+}
+
+std::string scene_format_name(SceneFormat format) {
+  return detail::enum_name(format, kSceneFormats);
+}
+
+namespace {
+bool has_par_file(const fs::path& dir) {
+  std::error_code ec;
+  for (const auto& entry : fs::directory_iterator(dir, ec)) {
+    const std::string name = entry.path().filename().string();
+    if (name.size() > 8 && name.compare(name.size() - 8, 8, "_par.txt") == 0) return true;
+  }
+  return false;
+}
+}  // namespace
+
+SceneFormat detect_scene_format(const std::string& path) {
+  std::error_code ec;
+  const fs::path p(path);
+  if (!fs::exists(p, ec)) throw Error("scene not found", path);
+  if (fs::is_directory(p, ec)) {
+    if (fs::exists(p / "cameras.txt") && fs::exists(p / "images.txt")) return SceneFormat::Colmap;
+    if (fs::exists(p / "bundle.out")) return SceneFormat::Bundler;
+    if (has_par_file(p)) return SceneFormat::Middlebury;
+    throw Error("cannot tell the scene format of this folder: expected cameras.txt + images.txt "
+                "(COLMAP), bundle.out (Bundler) or *_par.txt (Middlebury); use --format",
+                path);
+  }
+  const std::string ext = extension_lower(path);
+  const std::string name = p.filename().string();
+  if (ext == ".mlp") return SceneFormat::Mlp;
+  if (ext == ".json") return SceneFormat::Json;
+  if (ext == ".out") return SceneFormat::Bundler;
+  if (name.size() > 8 && name.compare(name.size() - 8, 8, "_par.txt") == 0)
+    return SceneFormat::Middlebury;
+  if (name == "cameras.txt" || name == "images.txt") return SceneFormat::Colmap;
+  throw Error("cannot tell the scene format from the name: expected .mlp, .json, bundle.out, "
+              "*_par.txt or a COLMAP folder; use --format",
+              path);
+}
+
+Scene read_scene(const std::string& path, const SceneReadOptions& options) {
+  SceneFormat format =
+      options.format == SceneFormat::Auto ? detect_scene_format(path) : options.format;
+  std::string where = path;
+  // A COLMAP model is a folder; accept its cameras.txt/images.txt too.
+  if (format == SceneFormat::Colmap && !fs::is_directory(path))
+    where = fs::path(path).parent_path().string();
+  Scene scene;
+  switch (format) {
+    case SceneFormat::Mlp: scene = read_mlp(where); break;
+    case SceneFormat::Json: scene = read_json_scene(where); break;
+    case SceneFormat::Middlebury: scene = read_middlebury(where); break;
+    case SceneFormat::Colmap: scene = read_colmap(where, options.image_dir); break;
+    case SceneFormat::Bundler: scene = read_bundler(where, options.image_dir); break;
+    case SceneFormat::Auto: break;
+  }
+  if (!options.mesh_path.empty()) {
+    scene.mesh = read_mesh(options.mesh_path);
+    scene.mesh_path = options.mesh_path;
+  }
+  scene.validate();
+  return scene;
+}
+
+void write_scene(const Scene& scene, const std::string& path, const SceneWriteOptions& options) {
+  SceneFormat format = options.format;
+  if (format == SceneFormat::Auto) {
+    const std::string ext = extension_lower(path);
+    if (ext == ".mlp")
+      format = SceneFormat::Mlp;
+    else if (ext == ".json")
+      format = SceneFormat::Json;
+    else if (ext.empty())
+      format = SceneFormat::Colmap;  // a folder
+    else
+      throw Error("cannot tell the output format from the name: use .mlp, .json or a folder "
+                  "(COLMAP)",
+                  path);
+  }
+  if (format == SceneFormat::Colmap) {
+    write_colmap(scene, path, options.overwrite);
+    return;
+  }
+  if (format != SceneFormat::Mlp && format != SceneFormat::Json)
+    throw Error(scene_format_name(format) + " is read-only; write .mlp, .json or COLMAP", path);
+  // The mesh goes beside the project file, so the project is self-contained.
+  std::string mesh_file;
+  if (!scene.mesh.empty()) {
+    const fs::path p(path);
+    mesh_file = (p.parent_path() / (p.stem().string() + "_mesh.ply")).string();
+  }
+  check_can_write(path, options.overwrite);
+  if (format == SceneFormat::Mlp)
+    for (const auto& v : scene.views)
+      if (v.camera.has_distortion())
+        throw Error("view '" + v.label + "' has radial distortion, which a MeshLab project "
+                    "cannot represent; undistort first or write COLMAP/JSON",
+                    path);
+  if (!mesh_file.empty()) check_can_write(mesh_file, options.overwrite);
+  std::error_code ec;
+  const bool mesh_existed = !mesh_file.empty() && fs::exists(mesh_file, ec);
+  if (!mesh_file.empty()) {
+    PlyWriteOptions ply;
+    ply.overwrite = options.overwrite;
+    write_ply(scene.mesh, mesh_file, ply);
+  }
+  try {
+    if (format == SceneFormat::Mlp)
+      write_mlp(scene, path, mesh_file, options.overwrite);
+    else
+      write_json_scene(scene, path, mesh_file, options.overwrite);
+  } catch (...) {
+    // No mesh without its project: remove the one this call created.
+    if (!mesh_file.empty() && !mesh_existed) fs::remove(mesh_file, ec);
+    throw;
+  }
+}
+
+}  // namespace meshnbv::io

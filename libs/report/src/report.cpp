@@ -1,0 +1,239 @@
+#include "meshnbv/report.h"
+
+#include <cmath>
+#include <filesystem>
+#include <sstream>
+
+#include "meshnbv/error.h"
+#include "meshnbv/io/file_util.h"
+#include "meshnbv/results.h"
+#include "meshnbv/raycaster.h"
+#include "meshnbv/renderer.h"
+#include "meshnbv/visualize.h"
+
+namespace fs = std::filesystem;
+
+namespace meshnbv {
+namespace {
+
+const Rgb8 kExisting{40, 90, 230};
+const Rgb8 kHighlight{255, 0, 255};
+
+std::string base64(const std::string& bytes) {
+  static const char* chars = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string out;
+  out.reserve((bytes.size() + 2) / 3 * 4);
+  std::size_t i = 0;
+  for (; i + 2 < bytes.size(); i += 3) {
+    const unsigned v = (unsigned char)bytes[i] << 16 | (unsigned char)bytes[i + 1] << 8 | (unsigned char)bytes[i + 2];
+    out += chars[v >> 18 & 63];
+    out += chars[v >> 12 & 63];
+    out += chars[v >> 6 & 63];
+    out += chars[v & 63];
+  }
+  if (i < bytes.size()) {
+    unsigned v = (unsigned char)bytes[i] << 16;
+    if (i + 1 < bytes.size()) v |= (unsigned char)bytes[i + 1] << 8;
+    out += chars[v >> 18 & 63];
+    out += chars[v >> 12 & 63];
+    out += i + 1 < bytes.size() ? chars[v >> 6 & 63] : '=';
+    out += '=';
+  }
+  return out;
+}
+
+std::string html_escape(const std::string& s) {
+  std::string out;
+  for (char c : s) {
+    if (c == '<') out += "&lt;";
+    else if (c == '>') out += "&gt;";
+    else if (c == '&') out += "&amp;";
+    else if (c == '"') out += "&quot;";
+    else out += c;
+  }
+  return out;
+}
+
+std::string fixed(double v, int digits = 3) {
+  std::ostringstream ss;
+  ss.setf(std::ios::fixed);
+  ss.precision(digits);
+  ss << v;
+  return ss.str();
+}
+
+std::string general(double v) {
+  std::ostringstream ss;
+  ss.precision(4);
+  ss << v;
+  return ss.str();
+}
+
+// A camera with the same pose and field of view, `width` pixels wide.
+PinholeCamera scaled(const PinholeCamera& c, int width) {
+  if (c.width == width) return c;
+  PinholeCamera s = c;
+  const double k = double(width) / c.width;
+  s.width = width;
+  s.height = std::max(2, int(std::lround(c.height * k)));
+  s.fx *= k;
+  s.fy *= k;
+  s.cx = (c.cx + 0.5) * k - 0.5;
+  s.cy = (c.cy + 0.5) * k - 0.5;
+  return s;
+}
+
+}  // namespace
+
+ReportFiles write_report(const ReportInputs& in, const std::string& folder,
+                         const ProgressCallback& progress) {
+  if (!in.scene || !in.pri || !in.suggestions) throw Error("report: missing scene, PRI or suggestions");
+  fs::create_directories(folder);
+  const Scene& scene = *in.scene;
+  const SuggestResult& sug = *in.suggestions;
+  const TriangleMesh coloured = mesh_with_pri(scene.mesh, *in.pri);
+  const RayCaster caster(scene.mesh);
+  RenderOptions ro;
+  ro.background = Vec3(1.0, 1.0, 1.0);
+  ro.ambient = 0.55;
+  ro.diffuse = 0.45;
+  const PriSummary summary = summarize_pri(*in.pri, 10);
+  double lo = 0, hi = 1;
+  for (const auto& [p, v] : summary.percentiles) {
+    if (p == 5.0) lo = v;
+    if (p == 95.0) hi = v;
+  }
+  ReportFiles out;
+  auto save = [&](const Image& img, const std::string& name) {
+    const std::string path = (fs::path(folder) / name).string();
+    img.save(path);
+    out.pictures.push_back(path);
+    return path;
+  };
+
+  // Overviews: the mesh by PRI, existing cameras in blue, suggestions red..yellow.
+  const double diag = scene.mesh.bounding_box().diagonal();
+  std::vector<FrustumOverlay> overlays;
+  std::vector<Vec3> frame_points;
+  for (const Vec3& c : scene.mesh.bounding_box().corners()) frame_points.push_back(c);
+  for (const auto& v : scene.views) {
+    if (!v.has_image() || !v.used) continue;
+    // Existing cameras are drawn but do not set the framing: a ring of
+    // distant cameras would shrink the mesh to a few pixels.
+    overlays.push_back({v.camera, kExisting, 0.06 * diag * v.camera.fx / v.camera.width, 1, ""});
+  }
+  const std::size_t n_sug = sug.suggestions.size();
+  for (std::size_t i = 0; i < n_sug; ++i) {
+    const Suggestion& s = sug.suggestions[i];
+    const double t = n_sug > 1 ? double(i) / double(n_sug - 1) : 0.0;
+    const double depth = 0.2 * std::max(1e-9, s.camera.depth(s.look_at));
+    overlays.push_back({s.camera, Rgb8{255, std::uint8_t(std::lround(200 * t)), 0}, depth, 3, s.label});
+    frame_points.push_back(s.camera.center());
+  }
+  const RenderInputs coloured_inputs{&coloured, &caster, nullptr, nullptr, &coloured.face_colors};
+  const double azimuths[2] = {35.0, 215.0};
+  for (int k = 0; k < 2; ++k) {
+    const PinholeCamera viewer = overview_camera(frame_points, azimuths[k], 35.0, in.image_width, in.image_height);
+    Image img = render(coloured_inputs, viewer, ro);
+    draw_frustums(img, viewer, overlays);
+    draw_color_scale(img, lo, hi, "PRI (" + measure_name(in.pri_options.measure) + ")");
+    save(img, "overview_" + std::to_string(k + 1) + ".png");
+    report_progress(progress, 0.2 * (k + 1), "report");
+  }
+
+  // The top suggestions as their cameras would see the mesh, worst faces in magenta.
+  const int n_views = std::min<int>(in.suggestion_views, int(n_sug));
+  for (int i = 0; i < n_views; ++i) {
+    const Suggestion& s = sug.suggestions[std::size_t(i)];
+    TriangleMesh highlighted = coloured;
+    for (int f : sug.regions[std::size_t(s.region)].faces) highlighted.face_colors[std::size_t(f)] = kHighlight;
+    const RenderInputs hin{&highlighted, &caster, nullptr, nullptr, &highlighted.face_colors};
+    save(render(hin, scaled(s.camera, 640), ro), s.label + ".png");
+    report_progress(progress, 0.4 + 0.5 * (i + 1) / std::max(1, n_views), "report");
+  }
+  save(histogram_image(in.pri->pri, 30, 640, 300, "PRI of observed faces (" + measure_name(in.pri_options.measure) + ")"),
+       "histogram.png");
+
+  // The page.
+  std::ostringstream h;
+  auto picture = [&](const std::string& name, const std::string& alt) {
+    const std::string data = io::read_file((fs::path(folder) / name).string());
+    h << "<figure><img alt=\"" << html_escape(alt) << "\" src=\"data:image/png;base64," << base64(data)
+      << "\"><figcaption>" << html_escape(alt) << " (<a href=\"" << name << "\">" << name << "</a>)</figcaption></figure>\n";
+  };
+  h << "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>MeshNBV report</title>\n<style>"
+       "body{font-family:sans-serif;max-width:1100px;margin:2em auto;color:#222}"
+       "table{border-collapse:collapse;margin:1em 0}td,th{border:1px solid #bbb;padding:3px 8px;text-align:right}"
+       "th{background:#eee}td.l,th.l{text-align:left}figure{display:inline-block;margin:0.5em}"
+       "img{max-width:100%;border:1px solid #ccc}.row{display:flex;flex-wrap:wrap}"
+       "</style></head><body>\n";
+  h << "<h1>MeshNBV report</h1>\n<p>Scene <code>" << html_escape(in.scene_path) << "</code>: "
+    << scene.mesh.num_faces() << " faces, " << scene.views.size() << " views ("
+    << in.pri->views_used << " with images used). Method: Morreale, Romanoni, Matteucci, "
+    << "<i>Predicting the Next Best View for 3D Mesh Refinement</i> (2018).</p>\n";
+  h << "<h2>Where the mesh is poorly reconstructed</h2>\n<p>Faces coloured by PRI from green (best, "
+    << general(lo) << ") to red (worst, " << general(hi) << "; 5th and 95th percentiles), grey where no two views "
+    << "see a face. Blue: the existing cameras. Red to yellow: the suggested next views, best first.</p>\n<div class=\"row\">\n";
+  picture("overview_1.png", "Overview from one side");
+  picture("overview_2.png", "Overview from the other side");
+  h << "</div>\n<table><tr><th class=l>faces</th><th>observed</th><th>unobserved</th><th>textureless</th></tr><tr><td class=l>"
+    << summary.faces << "</td><td>" << summary.observed << "</td><td>" << summary.unobserved << "</td><td>"
+    << summary.textureless << "</td></tr></table>\n<table><tr>";
+  for (const auto& [p, v] : summary.percentiles) h << "<th>p" << int(p) << "</th>";
+  h << "</tr><tr>";
+  for (const auto& [p, v] : summary.percentiles) h << "<td>" << general(v) << "</td>";
+  h << "</tr></table>\n";
+  picture("histogram.png", "PRI histogram");
+  h << "<h2>Where to take the next photos</h2>\n<table><tr><th>rank</th><th class=l>label</th><th class=l>from</th>"
+       "<th>region</th><th>energy</th><th>occlusion</th><th>focus</th><th>parallax</th><th>incidence</th>"
+       "<th>worst faces seen</th><th class=l>centre</th></tr>\n";
+  for (const auto& s : sug.suggestions) {
+    const Vec3 c = s.camera.center();
+    h << "<tr><td>" << s.rank << "</td><td class=l>" << html_escape(s.label) << "</td><td class=l>"
+      << html_escape(s.source) << "</td><td>" << s.region << "</td><td>" << fixed(s.energy.total, 2) << "</td><td>"
+      << fixed(s.energy.occlusion, 2) << "</td><td>" << fixed(s.energy.focus, 2) << "</td><td>"
+      << fixed(s.energy.parallax, 2) << "</td><td>" << fixed(s.energy.incidence, 2) << "</td><td>"
+      << s.seen_faces.size() << " / " << sug.regions[std::size_t(s.region)].faces.size() << "</td><td class=l>("
+      << fixed(c.x()) << ", " << fixed(c.y()) << ", " << fixed(c.z()) << ")</td></tr>\n";
+  }
+  h << "</table>\n<p>" << sug.candidates_evaluated << " candidate evaluations";
+  if (sug.candidates_generated)
+    h << "; " << sug.candidates_generated << " poses sampled, " << sug.rejected_inside << " rejected inside the mesh, "
+      << sug.rejected_too_close << " nearer than the safety distance";
+  h << ".</p>\n<div class=\"row\">\n";
+  for (int i = 0; i < n_views; ++i) {
+    const auto& s = sug.suggestions[std::size_t(i)];
+    picture(s.label + ".png", s.label + " as its camera would see the mesh; worst faces in magenta");
+  }
+  h << "</div>\n<h2>Inputs, options and timings</h2>\n<table><tr><th class=l>PRI option</th><th class=l>value</th></tr>"
+    << "<tr><td class=l>measure</td><td class=l>" << measure_name(in.pri_options.measure) << "</td></tr>"
+    << "<tr><td class=l>samples_per_side</td><td class=l>" << in.pri_options.samples_per_side << "</td></tr>"
+    << "<tr><td class=l>max_views_per_face</td><td class=l>" << in.pri_options.max_views_per_face << "</td></tr>"
+    << "<tr><td class=l>max_incidence_angle</td><td class=l>" << in.pri_options.max_incidence_angle << "</td></tr>"
+    << "<tr><td class=l>edge_margin</td><td class=l>" << in.pri_options.edge_margin << "</td></tr>"
+    << "<tr><td class=l>check_interior_occlusion</td><td class=l>" << (in.pri_options.check_interior_occlusion ? "true" : "false") << "</td></tr>"
+    << "</table>\n<table><tr><th class=l>suggestion option</th><th class=l>value</th></tr>";
+  const SuggestOptions& so = in.suggest_options;
+  h << "<tr><td class=l>candidates</td><td class=l>" << candidate_mode_name(so.mode) << "</td></tr>"
+    << "<tr><td class=l>top</td><td class=l>" << so.top << "</td></tr>"
+    << "<tr><td class=l>worst</td><td class=l>" << so.worst_k << "</td></tr>"
+    << "<tr><td class=l>weights</td><td class=l>" << so.energy.weights[0] << ", " << so.energy.weights[1] << ", "
+    << so.energy.weights[2] << ", " << so.energy.weights[3] << "</td></tr>"
+    << "<tr><td class=l>penalty</td><td class=l>" << so.energy.penalty << "</td></tr>"
+    << "<tr><td class=l>parallax_delta</td><td class=l>" << so.energy.parallax_delta << "</td></tr>"
+    << "<tr><td class=l>incidence_mu / sigma</td><td class=l>" << so.energy.incidence_mu << " / "
+    << so.energy.incidence_sigma << "</td></tr>"
+    << "<tr><td class=l>safety_distance</td><td class=l>" << so.safety_distance << "</td></tr>"
+    << "<tr><td class=l>seed</td><td class=l>" << so.sampling.seed << "</td></tr></table>\n";
+  h << "<table><tr><th class=l>step</th><th>seconds</th></tr>";
+  for (const auto& [step, sec] : in.timings) h << "<tr><td class=l>" << html_escape(step) << "</td><td>" << fixed(sec) << "</td></tr>";
+  h << "</table>\n<table><tr><th class=l>file</th><th class=l>what</th></tr>";
+  for (const auto& [file, what] : in.files) h << "<tr><td class=l><a href=\"" << html_escape(file) << "\">" << html_escape(file) << "</a></td><td class=l>" << html_escape(what) << "</td></tr>";
+  h << "</table>\n</body></html>\n";
+  out.html = (fs::path(folder) / "report.html").string();
+  io::write_atomically(out.html, [&](std::ostream& o) { o << h.str(); });
+  report_progress(progress, 1.0, "report");
+  return out;
+}
+
+}  // namespace meshnbv
