@@ -4,6 +4,8 @@
 // Every expected value is computed here, independently of the core
 // (tests/core/test_geometry.h for distances and insideness).
 #include <algorithm>
+#include <iostream>
+#include <memory>
 #include <cmath>
 #include <vector>
 
@@ -311,4 +313,140 @@ TEST(SampleCandidates, RejectedCountsAddUpAndMatchTheGeometry) {
   // The scene exercises both rules.
   EXPECT_GT(too_close, 100u);  // the 0.2 m ring of poses is near the ground
   EXPECT_GT(inside, 5u);
+}
+
+// --- refine_candidate -----------------------------------------------------
+
+namespace {
+
+// A 0.2 m square at the origin facing +z, all of it the worst region (4
+// vertices, normal +z), no existing view (no parallax term). For a pose at
+// incidence x looking at the square, every vertex scores about
+// 0.6 O + 1.6 F + 0.6 I(x) with O = 1 and F ~ 0, so E <= 4 (0.6 + 0.6 I(mu))
+// (F <= 0 and I <= I(mu) everywhere), reached at 55 degrees from the
+// normal, looking at the centroid, at any distance and azimuth.
+struct SmallSquare {
+  TriangleMesh mesh;
+  std::unique_ptr<RayCaster> caster;
+  WorstRegion region;
+  EnergyOptions options;
+  explicit SmallSquare(const TriangleMesh& extra = {}) {
+    mesh = synth::make_ground(Vec3(-0.1, -0.1, 0), Vec3(0.1, 0.1, 0), 0.2, 0);
+    const std::size_t square_faces = mesh.num_faces();
+    if (!extra.empty()) mesh.append(extra);
+    caster = std::make_unique<RayCaster>(mesh);
+    std::vector<float> pri(mesh.num_faces(), 0.0f);
+    std::fill(pri.begin(), pri.begin() + long(square_faces), 1.0f);
+    region = worst_region(mesh, pri, int(square_faces));
+  }
+  double upper_bound() const { return 4 * (0.6 + 0.6 * incidence_term(55 * kDeg, options)); }
+};
+
+// A camera at `distance` from the origin, `incidence` degrees from +z in
+// the xz-plane, turned `off` degrees (about +z) away from the origin.
+PinholeCamera pose_at(double incidence, double distance, double off) {
+  const Vec3 c = distance * Vec3(std::sin(incidence * kDeg), 0, std::cos(incidence * kDeg));
+  const Vec3 to = -c.normalized();
+  const Vec3 dir = Eigen::AngleAxisd(off * kDeg, Vec3::UnitZ()) * to;
+  return camera_looking(intrinsics(), c, dir, Vec3::UnitZ());
+}
+
+double incidence_deg(const PinholeCamera& c) {
+  return std::acos(c.center().normalized().z()) / kDeg;
+}
+double pointing_error_deg(const PinholeCamera& c) {
+  return std::acos(std::clamp(c.forward().dot(-c.center().normalized()), -1.0, 1.0)) / kDeg;
+}
+
+}  // namespace
+
+TEST(RefineCandidate, MovesTowardsTheKnownOptimumAndStrictlyImproves) {
+  const SmallSquare s;
+  const EnergyEvaluator e(s.mesh, *s.caster, s.region, {}, s.options);
+  const SafetyChecker safety(s.mesh, *s.caster, 0.05 * s.mesh.bounding_box().diagonal());
+  const PinholeCamera start = pose_at(25, 5.0, 10);
+  ASSERT_TRUE(safety.safe(start.center()));
+  const double e0 = e.evaluate(start).total, bound = s.upper_bound();
+  const PinholeCamera refined = refine_candidate(start, Vec3::UnitZ(), e, safety);
+  const double e1 = e.evaluate(refined).total;
+  std::cout << "start: incidence " << incidence_deg(start) << " pointing " << pointing_error_deg(start)
+            << " E " << e0 << "; refined: incidence " << incidence_deg(refined) << " pointing "
+            << pointing_error_deg(refined) << " E " << e1 << "; bound " << bound << "\n";
+  EXPECT_GT(e1, e0 + 1.0);
+  EXPECT_LE(e1, bound + 1e-12);
+  EXPECT_GT(e1, bound - 0.05);
+  EXPECT_LT(std::abs(incidence_deg(refined) - 55), 2.0);
+  EXPECT_LT(pointing_error_deg(refined), 1.0);
+}
+
+TEST(RefineCandidate, NeverReturnsAnUnsafePose) {
+  // The same square with a closed wall x in [3, 10] next to it. From 25
+  // degrees on the wall's side, the optimum at the same distance (x = 4.1)
+  // is inside the wall; with a 0.5 m safety distance the safe poses have
+  // x <= 2.5. Checked with the brute-force distance and the wall's interval
+  // test, for several starts and iteration budgets.
+  const Vec3 lo(3, -10, -1), hi(10, 10, 10);
+  const SmallSquare walled(synth::make_box(lo, hi, 1.0, 0));
+  const SmallSquare open;
+  const double margin = 0.5;
+  const EnergyEvaluator e(walled.mesh, *walled.caster, walled.region, {}, walled.options);
+  const SafetyChecker safety(walled.mesh, *walled.caster, margin);
+  const EnergyEvaluator e_open(open.mesh, *open.caster, open.region, {}, open.options);
+  const SafetyChecker safety_open(open.mesh, *open.caster, 0.0);
+  int crossings = 0;
+  for (double incidence : {15.0, 25.0, 30.0})
+    for (double distance : {4.0, 5.0})
+      for (int iterations : {20, 150, 400}) {
+        const PinholeCamera start = pose_at(incidence, distance, 3);
+        ASSERT_GT(test::brute_force_distance(walled.mesh, start.center()), margin);
+        RefineOptions o;
+        o.iterations = iterations;
+        o.position_step = 0.3;  // a simplex that reaches across the rule's boundary
+        const PinholeCamera r = refine_candidate(start, Vec3::UnitZ(), e, safety, o);
+        const Vec3 c = r.center();
+        // Most results lie on the rule's boundary (x = 2.5): 1e-6 m of slack
+        // for the checker's own rounding.
+        EXPECT_GE(test::brute_force_distance(walled.mesh, c), margin - 1e-6) << c.transpose();
+        EXPECT_FALSE(test::in_box(c, lo, hi)) << c.transpose();
+        EXPECT_GE(e.evaluate(r).total, e.evaluate(start).total);
+        // Without the wall the same refinement goes where the wall is: the
+        // rule binds in this scene.
+        const PinholeCamera free = refine_candidate(start, Vec3::UnitZ(), e_open, safety_open, o);
+        crossings += free.center().x() > lo.x() - margin;
+      }
+  // Measured: 10 of the 18.
+  EXPECT_GT(crossings, 6) << "of 18 unconstrained refinements ended where the walled scene is unsafe";
+}
+
+TEST(RefineCandidate, RespectsIterationsAndCountsItsEvaluations) {
+  const SmallSquare s;
+  const EnergyEvaluator e(s.mesh, *s.caster, s.region, {}, s.options);
+  const SafetyChecker safety(s.mesh, *s.caster, 0.0);  // every probed pose is feasible
+  const PinholeCamera start = pose_at(25, 5.0, 10);
+  std::size_t previous = 0;
+  double previous_energy = -std::numeric_limits<double>::infinity();
+  for (int iterations = 0; iterations <= 40; ++iterations) {
+    RefineOptions o;
+    o.iterations = iterations;
+    std::size_t reported = 0;
+    const std::size_t before = e.evaluations();
+    const PinholeCamera r = refine_candidate(start, Vec3::UnitZ(), e, safety, o, &reported);
+    // The evaluator's own count of evaluate() calls.
+    EXPECT_EQ(reported, e.evaluations() - before) << iterations;
+    // Nelder-Mead: the 6 simplex vertices, then per iteration a reflection
+    // and at most an expansion or a contraction, or a contraction and a
+    // shrink of 5 vertices.
+    if (iterations == 0) {
+      EXPECT_EQ(reported, 6u);
+    } else {
+      EXPECT_GE(reported, previous + 1) << iterations;
+      EXPECT_LE(reported, previous + 7) << iterations;
+    }
+    // Each run repeats the previous one and goes one iteration further:
+    // the best pose can only get better.
+    const double energy = e.evaluate(r).total;
+    EXPECT_GE(energy, previous_energy) << iterations;
+    previous = reported;
+    previous_energy = energy;
+  }
 }
