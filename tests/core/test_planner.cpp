@@ -7,6 +7,7 @@
 #include "meshnbv/planner.h"
 #include "meshnbv/pri.h"
 #include "meshnbv/synth/project.h"
+#include "box_scene.h"
 #include "test_geometry.h"
 #include "test_util.h"
 
@@ -131,6 +132,41 @@ TEST(Planner, SampledAndRefinedRespectSafety) {
   EXPECT_GT(sampled.rejected_too_close, 0u);
   std::cout << "rejected too close " << sampled.rejected_too_close << ", inside "
             << sampled.rejected_inside << " of " << sampled.candidates_generated << "\n";
+}
+
+TEST(Planner, SafeOnAClosedBoxByTheIntervalTest) {
+  // A closed 1 x 0.8 x 0.6 m box, the worst region on its +x side. Every
+  // suggestion and ranked pose, sampled and refined, is outside the box by
+  // its interval test and at least the safety distance from its surface
+  // by the box's own distance function (no SafetyChecker involved).
+  test::BoxSceneOptions bo;
+  Scene scene = test::make_box_scene(bo);
+  for (auto& v : scene.views) v.image_path = "unused.png";  // existing views; no image is read
+  std::vector<float> pri(scene.mesh.num_faces(), 0.1f);
+  for (std::size_t face = 0; face < pri.size(); ++face)
+    if (scene.mesh.face_normal(face).x() > 0.9) pri[face] = 0.5f + 0.01f * float(face % 7);
+  SuggestOptions o;
+  o.top = 2;
+  o.safety_distance = 0.25;
+  o.sampling.distance_factors = {0.1, 0.5, 1.0};  // the inner ring is within reach of the rule
+  o.refine_best = 4;
+  const double limit = o.safety_distance * scene.mesh.bounding_box().diagonal();
+  std::size_t checked = 0;
+  for (CandidateMode mode : {CandidateMode::Sampled, CandidateMode::Refined}) {
+    o.mode = mode;
+    const SuggestResult r = suggest_views(scene, pri, o);
+    EXPECT_GT(r.rejected_too_close, 0u);
+    std::vector<PinholeCamera> poses;
+    for (const auto& s : r.suggestions) poses.push_back(s.camera);
+    for (const auto& c : r.ranking) poses.push_back(c.camera);
+    for (const auto& cam : poses) {
+      const Vec3 c = cam.center();
+      EXPECT_FALSE(test::in_box(c, bo.min, bo.max)) << c.transpose();
+      EXPECT_GE(test::box_surface_distance(c, bo.min, bo.max), limit) << c.transpose();
+      ++checked;
+    }
+  }
+  EXPECT_GT(checked, 100u);
 }
 
 TEST(Planner, RefinedModeImprovesTheSampledPick) {
