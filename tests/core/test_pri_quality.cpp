@@ -121,6 +121,11 @@ struct Measured {  // measured on 2026-12-01, truncated to 3 decimals
   double rho_ssd, rho_ncc;
   bool issue_targets;  // the case is one of those the issue's targets are for
 };
+// Readable test names in ctest (instead of a byte dump of the struct).
+void PrintTo(const Measured& m, std::ostream* os) {
+  *os << "measured AUC " << m.auc_ssd << "/" << m.auc_ncc << ", Spearman region "
+      << m.rho_region_ssd << "/" << m.rho_region_ncc << ", all " << m.rho_ssd << "/" << m.rho_ncc;
+}
 constexpr double kAucMargin = 0.02, kRhoMargin = 0.03;
 constexpr double kTargetAuc = 0.85, kTargetRho = 0.5;
 
