@@ -142,3 +142,107 @@ TEST(Energy, OptionsAreChecked) {
   p.incidence_sigma = 0;
   EXPECT_THROW(p.check(), Error);
 }
+
+// --- The incidence term's normalisation for small sigma (issue #20) -------
+// kappa = 1 / sigma^2 with sigma in radians: sigma = 2 degrees gives kappa
+// = 820.7, past the ~713 where std::cyl_bessel_i(0, kappa) overflows a
+// double; the term must stay finite and keep its values.
+
+namespace {
+double kappa_of(double sigma_degrees) { return 1.0 / std::pow(sigma_degrees * kDeg, 2); }
+}  // namespace
+
+TEST(IncidenceBessel, ContinuousAtTheSwitchToTheAsymptoticSeries) {
+  const double k = kBesselI0AsymptoticFrom;
+  const double below = log_bessel_i0_scaled(std::nextafter(k, 0.0));  // std::cyl_bessel_i branch
+  const double at = log_bessel_i0_scaled(k);                           // series branch
+  // One ulp of kappa moves log I0(k) - k by about 1e-16 x 1/(2k): any gap
+  // beyond that is a disagreement of the two branches.
+  EXPECT_NEAR(below, at, 1e-12 * std::abs(at));
+  EXPECT_NEAR(below + k, at + k, 1e-12 * (at + k));  // log I0 itself
+  // The series branch at the switch against std::cyl_bessel_i at the same kappa.
+  EXPECT_NEAR(at, std::log(std::cyl_bessel_i(0.0, k)) - k, 1e-12 * std::abs(at));
+}
+
+TEST(IncidenceBessel, AgreesWithCylBesselIWhereThatIsFinite) {
+  // Below the switch this is the function itself; from 50 to 700 it checks
+  // the series against the library.
+  int series_points = 0;
+  for (double k = 1e-3; k < 710; k *= 1.07) {
+    const double reference = std::log(std::cyl_bessel_i(0.0, k));
+    ASSERT_TRUE(std::isfinite(reference)) << k;
+    const double log_i0 = log_bessel_i0_scaled(k) + k;
+    EXPECT_NEAR(log_i0, reference, 1e-12 * std::max(1.0, std::abs(reference))) << "kappa " << k;
+    series_points += k >= kBesselI0AsymptoticFrom;
+  }
+  EXPECT_GT(series_points, 30);
+  // Beyond 713 the double overflows, which is what the series avoids; a
+  // long double reference still exists there.
+  EXPECT_TRUE(std::isinf(std::cyl_bessel_i(0.0, kappa_of(2.0))));
+  for (double sigma : {2.0, 1.0}) {
+    const long double k = kappa_of(sigma);
+    const long double reference = std::log(std::cyl_bessel_il(0.0L, k)) - k;
+    EXPECT_NEAR(log_bessel_i0_scaled(double(k)), double(reference), 1e-12) << "sigma " << sigma;
+  }
+}
+
+TEST(IncidenceBessel, FiniteEnergiesForSigmaOfAFewTenthsOfADegree) {
+  Square s;
+  const RayCaster caster(s.mesh);
+  const WorstRegion region = worst_region(s.mesh, s.pri, 2);
+  const Vec3 target(0.5, 0.5, 0);
+  const Vec3 eye = target + 5.0 * Vec3(std::sin(50 * kDeg), 0, std::cos(50 * kDeg));
+  const PinholeCamera cam =
+      PinholeCamera::look_at(eye, target, Vec3(0, 0, 1), 500, 500, 319.5, 239.5, 640, 480);
+  for (double sigma : {0.1, 0.5, 1.0, 2.0}) {
+    EnergyOptions o;
+    o.incidence_sigma = sigma;
+    const double k = o.kappa();
+    EXPECT_NEAR(k, kappa_of(sigma), 1e-9 * k);
+    // At x = mu: kappa - log(2 pi I0(kappa)) = log(kappa / (2 pi)) / 2 -
+    // log1p(1/(8k) + 9/(128k^2) + 225/(3072k^3) + ...), written out here
+    // (the next term is below 1e-10 for these kappas).
+    const double at_mu = incidence_term(55 * kDeg, o);
+    const double expected = 0.5 * std::log(k / (2 * M_PI)) -
+                            std::log1p(1 / (8 * k) + 9 / (128 * k * k) + 225 / (3072 * k * k * k));
+    ASSERT_TRUE(std::isfinite(at_mu)) << "sigma " << sigma;
+    EXPECT_NEAR(at_mu, expected, 1e-9) << "sigma " << sigma;
+    // Two sigma away from mu the density has fallen by kappa (1 - cos(2 sigma)) ~ 2.
+    const double two_sigma = incidence_term((55 + 2 * sigma) * kDeg, o);
+    EXPECT_NEAR(at_mu - two_sigma, k * (1 - std::cos(2 * sigma * kDeg)), 1e-9) << "sigma " << sigma;
+    // The whole energy, and its incidence part by hand.
+    const EnergyEvaluator e(s.mesh, caster, region, {Vec3(-3, 0, 5)}, o);
+    const EnergyTerms t = e.evaluate(cam);
+    EXPECT_TRUE(std::isfinite(t.total) && std::isfinite(t.incidence)) << "sigma " << sigma;
+    double incidence = 0;
+    for (int v : region.vertices) {
+      const Vec3& p = s.mesh.vertices[std::size_t(v)];
+      incidence += incidence_term(std::acos(Vec3::UnitZ().dot((eye - p).normalized())), o);
+    }
+    EXPECT_NEAR(t.incidence, 0.6 * incidence, 1e-9 * std::max(1.0, std::abs(incidence)));
+  }
+}
+
+TEST(IncidenceBessel, IncidenceIsTheVonMisesLogDensity) {
+  // SPEC section 4: I(x) = kappa cos(x - mu) - log(2 pi I0(kappa)), the
+  // logarithm of the von Mises density on the circle: exp(I) integrates to
+  // 1 over a period, and I(x) - I(mu) = kappa (cos(x - mu) - 1). The
+  // trapezoid rule on a periodic function is exact to rounding once the
+  // step is well under sigma (2^17 steps: 27 per sigma at 0.1 degrees).
+  for (double sigma : {0.1, 0.5, 1.0, 2.0, 15.0, 60.0, 90.0}) {
+    EnergyOptions o;
+    o.incidence_sigma = sigma;
+    const double k = o.kappa(), mu = 55 * kDeg;
+    const int n = 1 << 17;
+    const double h = 2 * M_PI / n;
+    double integral = 0;
+    for (int i = 0; i < n; ++i) integral += std::exp(incidence_term(mu - M_PI + i * h, o)) * h;
+    EXPECT_NEAR(integral, 1.0, 1e-9) << "sigma " << sigma;
+    const double at_mu = incidence_term(mu, o);
+    for (double d : {0.3, 1.0, 7.0, 90.0}) {
+      const double x = mu + d * kDeg;
+      EXPECT_NEAR(incidence_term(x, o) - at_mu, k * (std::cos(x - mu) - 1),
+                  1e-12 * std::max(1.0, k)) << "sigma " << sigma << " d " << d;
+    }
+  }
+}

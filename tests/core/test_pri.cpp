@@ -260,11 +260,63 @@ TEST(Pri, SameResultForAnyThreadCount) {
 }
 
 TEST(Pri, MaxViewsKeepsSmallestIncidence) {
+  // The plane z = 0 (normal +z) alone: a view sees a face when its three
+  // vertices project inside [0, W-1] x [0, H-1] in front of the camera and
+  // the angle between +z and the direction to the camera is at most 80
+  // degrees (nothing occludes). The views kept are computed here from
+  // that, by hand: smallest angle first, ties by larger projected area.
   PlaneScene s = make_scene("max_views", plane(), kEyes);
   PriOptions o;
   o.max_views_per_face = 2;
+  const PriViewSelection sel = select_pri_views(s.scene, o);
   const PriResult r = compute_pri(s.scene, o);
-  for (std::size_t f = 0; f < r.pri.size(); ++f) EXPECT_LE(r.pri_views[f], 2);
+  const TriangleMesh& m = s.scene.mesh;
+  std::size_t limited = 0, not_first_two = 0;
+  for (std::size_t f = 0; f < m.num_faces(); ++f) {
+    Vec3 centroid = Vec3::Zero();
+    for (int k = 0; k < 3; ++k) centroid += m.vertices[std::size_t(m.faces[f][k])] / 3.0;
+    struct Seen {
+      double angle, area;
+      int view;
+    };
+    std::vector<Seen> seen;
+    for (std::size_t i = 0; i < kEyes.size(); ++i) {
+      const PinholeCamera& c = s.scene.views[i].camera;
+      Vec2 px[3];
+      bool inside = true;
+      for (int k = 0; k < 3; ++k) {
+        const Vec3 x = c.R * m.vertices[std::size_t(m.faces[f][k])] + c.t;
+        px[k] = Vec2(c.fx * x.x() / x.z() + c.cx, c.fy * x.y() / x.z() + c.cy);
+        inside = inside && x.z() > 0 && px[k].x() >= 0 && px[k].y() >= 0 &&
+                 px[k].x() <= c.width - 1 && px[k].y() <= c.height - 1;
+      }
+      const double angle = std::acos((kEyes[i] - centroid).normalized().z()) * 180 / M_PI;
+      if (!inside || angle > 80) continue;
+      const Vec2 a = px[1] - px[0], b = px[2] - px[0];
+      seen.push_back({angle, 0.5 * std::abs(a.x() * b.y() - a.y() * b.x()), int(i)});
+    }
+    std::sort(seen.begin(), seen.end(), [](const Seen& a, const Seen& b) {
+      return a.angle != b.angle ? a.angle < b.angle : a.area > b.area;
+    });
+    std::vector<int> expected;
+    for (std::size_t k = 0; k < std::min<std::size_t>(2, seen.size()); ++k) expected.push_back(seen[k].view);
+    std::sort(expected.begin(), expected.end());
+    EXPECT_EQ(sel.faces[f].views, expected) << "face " << f;
+    EXPECT_EQ(r.pri_views[f], int(expected.size())) << "face " << f;
+    if (seen.size() > 2) {
+      ++limited;
+      std::vector<int> by_index;
+      for (const Seen& v : seen) by_index.push_back(v.view);
+      std::sort(by_index.begin(), by_index.end());
+      by_index.resize(2);
+      not_first_two += expected != by_index;
+    }
+  }
+  // The rule is at work, and not as "the first two views that see it".
+  std::cout << limited << " faces seen by more than 2 views; " << not_first_two
+            << " keep other views than the first two\n";
+  EXPECT_GT(limited, 20u);
+  EXPECT_GT(not_first_two, 5u);
   EXPECT_EQ(r.observed, r.pri.size());
 }
 

@@ -138,9 +138,10 @@ TEST(Synth, TruthIsPhotoConsistentDegradedIsNot) {
 
   const Reprojection good = reproject(truth, c0, i0, c1, i1);
   EXPECT_GT(good.pixels, 10000u);
-  // Bound: interpolation of a textured, supersampled image at 30 degrees
-  // baseline; measured about 0.02.
-  EXPECT_LT(good.mean_abs, 0.035) << "mean |dL| through the truth";
+  // Interpolation of a textured, supersampled image at 30 degrees
+  // baseline. Measured 0.0157 on 2026-12-01 (deterministic render),
+  // ceiling = measured + 0.005.
+  EXPECT_LT(good.mean_abs, 0.0207) << "mean |dL| through the truth";
 
   // A strong dent where view 0 looks: through it, the views disagree.
   Vec3 target;
@@ -158,9 +159,12 @@ TEST(Synth, TruthIsPhotoConsistentDegradedIsNot) {
   const Reprojection bad = reproject(wrong, c0, i0, c1, i1, in_dent);
   const Reprojection same_pixels_truth = reproject(truth, c0, i0, c1, i1, in_dent);
   ASSERT_GT(bad.pixels, 200u);
-  EXPECT_GT(bad.mean_abs, 2.0 * same_pixels_truth.mean_abs)
+  // Measured on 2026-12-01: dent 0.0490 vs truth 0.0132 on the same 2017
+  // pixels, a ratio of 3.72. Floors: ratio = measured - 0.5, dent =
+  // measured - 0.005.
+  EXPECT_GT(bad.mean_abs, 3.2 * same_pixels_truth.mean_abs)
       << "dent " << bad.mean_abs << " vs truth " << same_pixels_truth.mean_abs;
-  EXPECT_GT(bad.mean_abs, 0.03);
+  EXPECT_GT(bad.mean_abs, 0.044);
   std::cout << "mean |dL|: truth " << good.mean_abs << " (" << good.pixels << " px), dent "
             << bad.mean_abs << " vs truth on the same pixels " << same_pixels_truth.mean_abs
             << " (" << bad.pixels << " px)\n";

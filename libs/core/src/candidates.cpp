@@ -138,13 +138,15 @@ PinholeCamera pose(const PinholeCamera& start, const PoseFrame& f, const Vec3& u
 
 PinholeCamera refine_candidate(const PinholeCamera& start, const Vec3& up,
                                const EnergyEvaluator& energy, const SafetyChecker& safety,
-                               const RefineOptions& o) {
+                               const RefineOptions& o, std::size_t* evaluations) {
   const Vec3 c0 = start.center();
+  std::size_t evaluated = 0;
   PoseFrame frame{start.forward(), start.right(), -start.down()};
   const double scale = std::max(1e-9, (energy.region().centroid - c0).norm());
   auto cost = [&](const Params& p) {
     const Vec3 c(p[0], p[1], p[2]);
     if (!safety.safe(c)) return std::numeric_limits<double>::infinity();
+    ++evaluated;
     return -energy.evaluate(pose(start, frame, up, p)).total;
   };
   // Nelder-Mead (standard coefficients), 6 vertices in 5-D.
@@ -195,6 +197,7 @@ PinholeCamera refine_candidate(const PinholeCamera& start, const Vec3& up,
       }
     }
   }
+  if (evaluations) *evaluations = evaluated;
   const int best = int(std::min_element(f.begin(), f.end()) - f.begin());
   if (!(f[best] < f_start)) return start;  // never worse than where it began
   return pose(start, frame, up, s[best]);

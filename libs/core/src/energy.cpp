@@ -10,6 +10,29 @@ namespace meshnbv {
 
 namespace {
 constexpr double kDeg = M_PI / 180.0;
+
+// kappa cos(d) - log(2 pi I0(kappa)) = kappa (cos d - 1) - (log(2 pi I0) - kappa),
+// with cos d - 1 = -2 sin^2(d / 2): no overflow and no cancellation of two
+// large numbers for large kappa.
+double von_mises_log_density(double d, double kappa, double log_norm_scaled) {
+  const double s = std::sin(0.5 * d);
+  return -2.0 * kappa * s * s - log_norm_scaled;
+}
+}  // namespace
+
+double log_bessel_i0_scaled(double kappa) {
+  if (kappa < kBesselI0AsymptoticFrom) return std::log(std::cyl_bessel_i(0.0, kappa)) - kappa;
+  // Hankel's asymptotic series: term_j = term_{j-1} (2j-1)^2 / (8 j kappa).
+  // From kappa = 50 the ratio stays under 1 for j < 100, and the terms fall
+  // under 1e-17 after at most 13 of them (long before the series' smallest
+  // term, where it would start to diverge).
+  double term = 1.0, sum = 0.0;
+  for (int j = 1; j < 100; ++j) {
+    term *= (2.0 * j - 1) * (2.0 * j - 1) / (8.0 * j * kappa);
+    sum += term;
+    if (term < 1e-17 * (1.0 + sum)) break;
+  }
+  return -0.5 * std::log(2 * M_PI * kappa) + std::log1p(sum);
 }
 
 void EnergyOptions::check() const {
@@ -80,8 +103,8 @@ double focus_term(const PinholeCamera& camera, const Vec3& vertex, double penalt
 
 double incidence_term(double angle, const EnergyOptions& o) {
   const double kappa = o.kappa();
-  return kappa * std::cos(angle - o.incidence_mu * kDeg) -
-         std::log(2 * M_PI * std::cyl_bessel_i(0.0, kappa));
+  return von_mises_log_density(angle - o.incidence_mu * kDeg, kappa,
+                               std::log(2 * M_PI) + log_bessel_i0_scaled(kappa));
 }
 
 double parallax_term(const Vec3& candidate, const Vec3& existing, const Vec3& vertex,
@@ -99,7 +122,7 @@ EnergyEvaluator::EnergyEvaluator(const TriangleMesh& mesh, const RayCaster& cast
       existing_(std::move(existing)),
       options_(options),
       absolute_eps_(options.visibility.absolute_eps_of_diagonal * mesh.bounding_box().diagonal()),
-      incidence_constant_(std::log(2 * M_PI * std::cyl_bessel_i(0.0, options.kappa()))) {
+      incidence_log_norm_scaled_(std::log(2 * M_PI) + log_bessel_i0_scaled(options.kappa())) {
   options_.check();
 }
 
@@ -108,6 +131,7 @@ bool EnergyEvaluator::vertex_visible(const PinholeCamera& camera, const Vec3& v)
 }
 
 EnergyTerms EnergyEvaluator::evaluate(const PinholeCamera& P) const {
+  evaluations_.fetch_add(1, std::memory_order_relaxed);
   EnergyTerms e;
   const Vec3 c = P.center();
   const double kappa = options_.kappa(), mu = options_.incidence_mu * kDeg;
@@ -123,7 +147,7 @@ EnergyTerms EnergyEvaluator::evaluate(const PinholeCamera& P) const {
     const double len = ray.norm();
     const double angle =
         len > 0 ? std::acos(std::clamp(region_.normals[k].dot(ray / len), -1.0, 1.0)) : M_PI;
-    e.incidence += w[3] * (kappa * std::cos(angle - mu) - incidence_constant_);
+    e.incidence += w[3] * von_mises_log_density(angle - mu, kappa, incidence_log_norm_scaled_);
   }
   e.total = e.occlusion + e.focus + e.parallax + e.incidence;
   return e;

@@ -138,13 +138,17 @@ SuggestResult suggest_views(const Scene& scene, const std::vector<float>& pri,
       if (o.mode == CandidateMode::Refined) {
         const std::size_t n = std::min<std::size_t>(std::size_t(o.refine_best), scored.size());
         std::vector<Scored> refined(n);
+        std::vector<std::size_t> evaluations(n, 0);
         tbb::parallel_for(std::size_t(0), n, [&](std::size_t i) {
           refined[i] = scored[i];
-          refined[i].camera = refine_candidate(scored[i].camera, up, energy, safety, o.refine);
+          refined[i].camera =
+              refine_candidate(scored[i].camera, up, energy, safety, o.refine, &evaluations[i]);
           refined[i].energy = energy.evaluate(refined[i].camera);
           refined[i].label = candidate_mode_name(CandidateMode::Refined);
         });
-        result.candidates_evaluated += n * std::size_t(o.refine.iterations);
+        // The energy evaluations made: the optimiser's, plus the final
+        // pose's evaluation of each refined candidate.
+        for (std::size_t k : evaluations) result.candidates_evaluated += k + 1;
         scored.insert(scored.begin(), refined.begin(), refined.end());
         std::stable_sort(scored.begin(), scored.end(), [](const Scored& a, const Scored& b) {
           return a.energy.total > b.energy.total;

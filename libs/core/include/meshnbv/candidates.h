@@ -18,7 +18,10 @@ class SafetyChecker {
   SafetyChecker(const TriangleMesh& mesh, const RayCaster& caster, double distance);
   // Inside when, along a majority of three fixed directions, the first
   // surface hit is seen from its back: the point is enclosed by a solid (also
-  // under an open ground plane). Works for unions of closed components.
+  // under an open ground plane). Works for unions of disjoint closed
+  // components; where components overlap, a point inside one near a face of
+  // the other can read as outside (tests/core/test_candidates.cpp). On the
+  // surface the answer is unspecified (safe() rejects it as too close).
   bool inside_volume(const Vec3& p) const;
   double distance_to_surface(const Vec3& p) const { return caster_.closest_point(p); }
   bool too_close(const Vec3& p) const { return distance_to_surface(p) < distance_; }
@@ -70,9 +73,13 @@ struct RefineOptions {
 };
 
 // Nelder-Mead over position (3) and viewing direction (2); unsafe poses are
-// infeasible. Returns a pose whose energy is >= the start's.
+// infeasible (not evaluated), so from a safe start it returns a safe pose
+// whose energy is >= the start's (the start itself when nothing better was
+// found). `evaluations`, when
+// given, receives the number of energy evaluations it made.
 PinholeCamera refine_candidate(const PinholeCamera& start, const Vec3& up,
                                const EnergyEvaluator& energy, const SafetyChecker& safety,
-                               const RefineOptions& options = {});
+                               const RefineOptions& options = {},
+                               std::size_t* evaluations = nullptr);
 
 }  // namespace meshnbv
