@@ -80,10 +80,12 @@ TEST(InMemoryImages, PriIsBitwiseIdenticalToTheSameImagesFromFiles) {
   }
   EXPECT_EQ(memory.images->loads(), 0u) << "an in-memory view was decoded from a file";
 
-  // No file is needed at all.
+  // No file is needed at all (the same scene from files, with a fresh cache, now fails).
   fs::remove_all(fs::path(dir) / "images");
-  EXPECT_TRUE(same_bits(compute_pri(memory).pri, compute_pri(memory).pri));
-  MESHNBV_EXPECT_ERROR_CONTAINS(compute_pri(files), "image file not found");
+  EXPECT_TRUE(same_bits(compute_pri(memory).pri, compute_pri(files).pri));
+  Scene files_uncached = files;
+  files_uncached.images = std::make_shared<ImageCache>();
+  MESHNBV_EXPECT_ERROR_CONTAINS(compute_pri(files_uncached), "image file not found");
 }
 
 TEST(InMemoryImages, MixedSourcesAndSuggestionsEqualFiles) {
@@ -160,8 +162,8 @@ TEST(InMemoryImages, SceneWritersRefuseThemAndWriteNothing) {
   // Without the in-memory view everything writes, the file view by its path.
   scene.views.erase(scene.views.begin() + 2);
   io::write_scene(scene, out + "/s.mlp");
-  io::write_scene(scene, out + "/s.json");
-  const Scene back = io::read_scene(out + "/s.json");
+  io::write_scene(scene, out + "/j.json");
+  const Scene back = io::read_scene(out + "/j.json");
   EXPECT_TRUE(back.views[1].has_image());
   EXPECT_FALSE(back.views[0].has_image());
 }
