@@ -13,7 +13,9 @@ struct Process {
 
 // Runs `command` through /bin/sh, capturing both streams.
 Process run(const std::string& command);
-// meshlabserver of the build's private prefix, under xvfb-run.
+// meshlabserver of the build's private prefix, under xvfb-run, with no
+// writable temporary folder (TMPDIR, HOME and, where a mount namespace is
+// allowed, /tmp read-only: tests/support/without_temp_folders.sh).
 Process meshlabserver(const std::string& arguments);
 // The meshnbv command line tool.
 Process meshnbv_cli(const std::string& arguments);
