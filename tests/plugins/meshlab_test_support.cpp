@@ -58,6 +58,13 @@ std::string project_copy(const std::string& test_name) {
   return dir.string();
 }
 
+std::string scratch_dir(const std::string& test_name) {
+  const fs::path dir = fs::path(WORK_DIR) / "scratch" / (test_name + "." + std::to_string(getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir.string();
+}
+
 std::string script(const std::string& name) {
   return (fs::path(SCRIPTS_DIR) / (name + ".mlx")).string();
 }

@@ -22,6 +22,9 @@ Process meshnbv_cli(const std::string& arguments);
 
 // A fresh copy of the fixture project for one test: WORK/tests/<name>/.
 std::string project_copy(const std::string& test_name);
+// A fresh, empty folder for one test in the build folder (not the system's
+// temporary folder): WORK/scratch/<name>.<pid>.
+std::string scratch_dir(const std::string& test_name);
 // A sample script (sample_projects/meshlab/<name>.mlx).
 std::string script(const std::string& name);
 // `script(name)` with parameter values replaced ({name, value}), written to `path`.

@@ -7,9 +7,9 @@
 #include <filesystem>
 #include <random>
 
+#include <QDir>
 #include <QImage>
 #include <QRgba64>
-#include <QTemporaryDir>
 
 #include <gtest/gtest.h>
 
@@ -51,6 +51,11 @@ void expect_equal(const Image& a, const Image& b) {
   EXPECT_EQ(differing, 0);
 }
 
+// The running test's name, for its scratch folder.
+std::string scratch_name() {
+  return ::testing::UnitTest::GetInstance()->current_test_info()->name();
+}
+
 }  // namespace
 
 #define MESHNBV_EXPECT_ERROR(statement, fragment)                                        \
@@ -64,8 +69,7 @@ void expect_equal(const Image& a, const Image& b) {
   } while (0)
 
 TEST(RasterImages, QImageEqualsCoreDecodingOfTheSamePng) {
-  QTemporaryDir dir;
-  ASSERT_TRUE(dir.isValid());
+  const QDir dir(QString::fromStdString(meshlab_test::scratch_dir(scratch_name())));
   const struct {
     QImage::Format format;
     int channels;
@@ -85,8 +89,7 @@ TEST(RasterImages, QImageEqualsCoreDecodingOfTheSamePng) {
 }
 
 TEST(RasterImages, SixteenBitQImageEqualsCoreDecodingOfTheSamePng) {
-  QTemporaryDir dir;
-  ASSERT_TRUE(dir.isValid());
+  const QDir dir(QString::fromStdString(meshlab_test::scratch_dir(scratch_name())));
   std::mt19937 rng(7);
   QImage colour(29, 17, QImage::Format_RGBA64);
   QImage grey(29, 17, QImage::Format_Grayscale16);
@@ -111,8 +114,7 @@ TEST(RasterImages, SixteenBitQImageEqualsCoreDecodingOfTheSamePng) {
 }
 
 TEST(RasterImages, JpegQImageEqualsCoreDecodingOfTheSameFile) {
-  QTemporaryDir dir;
-  ASSERT_TRUE(dir.isValid());
+  const QDir dir(QString::fromStdString(meshlab_test::scratch_dir(scratch_name())));
   const QString path = dir.filePath("photo.jpg");
   ASSERT_TRUE(noise(64, 48, QImage::Format_RGB32, 9).save(path, "JPEG", 90));
   const QImage loaded(path);
