@@ -158,6 +158,15 @@ void vtkMeshNBVSuggestionWriter::WriteData()
       meshnbv::Scene scene;
       for (const vtkMeshNBV::ViewBlock& block : vtkMeshNBV::ExtractViews(views))
       {
+        // A project references image files: a view whose image exists only
+        // as pipeline pixels cannot be written (without its image it would
+        // read back as a candidate view).
+        if (block.hasPixels && block.view.image_path.empty())
+        {
+          throw meshnbv::Error("view '" + block.view.label +
+            "' has pixels but no ImagePath: a .mlp project can only reference image files "
+            "(write the image, e.g. with vtkPNGWriter, and set the block's ImagePath field)");
+        }
         scene.views.push_back(block.view);
       }
       if (mesh)

@@ -12,7 +12,9 @@
  *   Only input 0 is needed.
  * - FileName ending in .mlp: the scene as a MeshLab project with one raster
  *   without image per suggestion (labels nbv_1, ...). Needs the views
- *   (input 1); the mesh is referenced where it is on disk (the mesh's field
+ *   (input 1), whose images it references by "ImagePath" (a view with
+ *   pixels but no ImagePath is an error: a project references image files);
+ *   the mesh is referenced where it is on disk (the mesh's field
  *   data "MeshFileName", as vtkMeshNBVSceneReader sets it), else written
  *   beside the project from input 2.
  *

@@ -1,5 +1,6 @@
 #include "vtkMeshNBVConversion.h"
 
+#include "vtkAOSDataArrayTemplate.h"
 #include "vtkCellArray.h"
 #include "vtkCellArrayIterator.h"
 #include "vtkCellData.h"
@@ -23,6 +24,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <memory>
 
 namespace vtkMeshNBV
 {
@@ -312,10 +314,14 @@ std::vector<ViewBlock> ExtractViews(vtkDataObject* views)
     if (vtkDataArray* pixels = PixelArray(image))
     {
       const int nc = pixels->GetNumberOfComponents();
-      if (pixels->GetDataType() != VTK_UNSIGNED_CHAR || nc < 1 || nc > 4)
+      const int type = pixels->GetDataType();
+      if ((type != VTK_UNSIGNED_CHAR && type != VTK_UNSIGNED_SHORT) || nc < 1 || nc > 4)
       {
-        throw Error(what + ": pixels must be unsigned char with 1 to 4 components, got " +
-          pixels->GetDataTypeAsString() + " with " + std::to_string(nc));
+        throw Error(what + ": pixels must be unsigned char or unsigned short with 1 to 4 "
+                           "components, got " + std::string(pixels->GetDataTypeAsString()) +
+          " with " + std::to_string(nc) +
+          " (convert them first, e.g. vtkImageShiftScale with SetOutputScalarTypeToUnsignedChar "
+          "and the scale that maps their range to 0..255)");
       }
       v.hasPixels = true;
     }
@@ -324,32 +330,80 @@ std::vector<ViewBlock> ExtractViews(vtkDataObject* views)
   return out;
 }
 
-meshnbv::Image ToImage(const ViewBlock& view)
+namespace
 {
-  vtkImageData* block = view.block;
-  auto* a = vtkUnsignedCharArray::SafeDownCast(PixelArray(block));
-  int dims[3];
-  block->GetDimensions(dims);
-  if (!a || dims[2] != 1 || a->GetNumberOfTuples() != static_cast<vtkIdType>(dims[0]) * dims[1])
+
+// Rows flipped back to top-down; `to8` maps one component to 8 bits.
+template <typename T, typename To8>
+void CopyPixels(const T* values, int width, int height, int nc, meshnbv::Image* image, To8 to8)
+{
+  const int channels = image->channels();
+  for (int y = 0; y < height; ++y)
   {
-    throw Error("view '" + view.view.label + "': the pixels are not a 2-D unsigned char image");
-  }
-  const int nc = a->GetNumberOfComponents();
-  const int channels = nc >= 3 ? 3 : 1;  // alpha dropped
-  meshnbv::Image image(dims[0], dims[1], channels);
-  for (int y = 0; y < dims[1]; ++y)
-  {
-    const unsigned char* src = a->GetPointer(static_cast<vtkIdType>(dims[1] - 1 - y) * dims[0] * nc);
-    std::uint8_t* dst = image.pixel(0, y);
-    for (int x = 0; x < dims[0]; ++x)
+    const T* src = values + static_cast<std::size_t>(height - 1 - y) * width * nc;
+    std::uint8_t* dst = image->pixel(0, y);
+    for (int x = 0; x < width; ++x)
     {
       for (int c = 0; c < channels; ++c)
       {
-        dst[x * channels + c] = src[x * nc + c];
+        dst[x * channels + c] = to8(src[x * nc + c]);
       }
     }
   }
+}
+
+} // namespace
+
+meshnbv::Image ToImage(const ViewBlock& view)
+{
+  vtkImageData* block = view.block;
+  vtkDataArray* a = PixelArray(block);
+  int dims[3];
+  block->GetDimensions(dims);
+  // Any array-of-structs layout (vtkUnsignedCharArray, vtkUnsignedShortArray, ...).
+  auto* u8 = vtkAOSDataArrayTemplate<unsigned char>::FastDownCast(a);
+  auto* u16 = vtkAOSDataArrayTemplate<unsigned short>::FastDownCast(a);
+  if (!a || (!u8 && !u16) || dims[2] != 1 ||
+    a->GetNumberOfTuples() != static_cast<vtkIdType>(dims[0]) * dims[1])
+  {
+    throw Error("view '" + view.view.label +
+      "': the pixels are not a 2-D image in an unsigned char or unsigned short array of "
+      "contiguous tuples");
+  }
+  const int nc = a->GetNumberOfComponents();
+  meshnbv::Image image(dims[0], dims[1], nc >= 3 ? 3 : 1);  // alpha dropped
+  if (u8)
+  {
+    CopyPixels(u8->GetPointer(0), dims[0], dims[1], nc, &image,
+      [](unsigned char v) { return static_cast<std::uint8_t>(v); });
+  }
+  else
+  {
+    // round(v / 257), in integers: what OpenCV gives the core for 16-bit files.
+    CopyPixels(u16->GetPointer(0), dims[0], dims[1], nc, &image,
+      [](unsigned short v) { return static_cast<std::uint8_t>((v + 128u) / 257u); });
+  }
   return image;
+}
+
+meshnbv::View ToViewWithPixels(const ViewBlock& block)
+{
+  meshnbv::View view = block.view;
+  if (!block.hasPixels)
+  {
+    return view;
+  }
+  auto image = std::make_shared<const meshnbv::Image>(ToImage(block));
+  const meshnbv::PinholeCamera& c = view.camera;
+  if (image->width() != c.width || image->height() != c.height)
+  {
+    throw Error("view '" + view.label + "': the pixels are " + std::to_string(image->width()) +
+      "x" + std::to_string(image->height()) + " but its camera says " + std::to_string(c.width) +
+      "x" + std::to_string(c.height));
+  }
+  view.pixels = std::move(image);
+  view.image_path.clear();
+  return view;
 }
 
 } // namespace vtkMeshNBV

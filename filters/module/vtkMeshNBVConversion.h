@@ -31,7 +31,7 @@ constexpr const char* TName = "t";                  // vtkDoubleArray, 3 compone
 constexpr const char* DistortionName = "Distortion";  // vtkDoubleArray, 2 components (k1, k2)
 constexpr const char* UsedName = "Used";            // vtkIntArray, 1 value (0 / 1)
 constexpr const char* ImagePathName = "ImagePath";  // vtkStringArray, 1 value ("" = none)
-constexpr const char* PixelsName = "Pixels";        // point scalars, unsigned char, 1 or 3 components
+constexpr const char* PixelsName = "Pixels";        // point scalars, unsigned char or short, 1 to 4 components
 // Field data of the mesh output: where the mesh came from.
 constexpr const char* MeshFileName = "MeshFileName";
 // Field data of the views output: the scene file and its format.
@@ -55,13 +55,23 @@ struct ViewBlock
 {
   meshnbv::View view;             // camera, label, used; image_path = the block's ImagePath
   vtkImageData* block = nullptr;  // the leaf it came from
-  bool hasPixels = false;         // the block carries "Pixels" point scalars
+  bool hasPixels = false;         // the block carries pixels (point scalars or "Pixels")
 };
 // Every leaf of a views input (a vtkMultiBlockDataSet of vtkImageData, possibly
-// nested), in order. Throws when a leaf is not an image or lacks ImageSize, K, R, t.
+// nested), in order. Throws when a leaf is not an image or lacks ImageSize, K,
+// R, t, or when its pixels are of a type ToImage does not convert.
 VTKMESHNBVFILTERS_EXPORT std::vector<ViewBlock> ExtractViews(vtkDataObject* views);
-// The pixels of a block as a core image (rows flipped back to top-down).
+// The pixels of a block as a core image, rows flipped back to top-down:
+// 1 or 2 components give grey, 3 or 4 RGB (alpha dropped, as the core's
+// loader drops it); unsigned short is scaled to 8 bits as the core scales
+// 16-bit files (round(v / 257)). Other scalar types are refused by
+// ExtractViews with the conversion to make.
 VTKMESHNBVFILTERS_EXPORT meshnbv::Image ToImage(const ViewBlock& view);
+// The block's view for the core with its pixels in memory (View::pixels:
+// converted once by ToImage, shared, no file; image_path cleared, since the
+// pipeline's pixels are what the core is to see). Throws when the pixels'
+// size differs from the camera's. A block without pixels is returned as is.
+VTKMESHNBVFILTERS_EXPORT meshnbv::View ToViewWithPixels(const ViewBlock& block);
 
 } // namespace vtkMeshNBV
 

@@ -234,14 +234,14 @@ int vtkMeshNBVNextBestViewFilter::RequestData(
     {
       pri[f] = static_cast<float>(priArray->GetComponent(static_cast<vtkIdType>(f), 0));
     }
+    // An existing view is one with an image: its ImagePath, or, for a block
+    // that has pixels and no ImagePath, the pixels handed over in memory.
+    // The planner reads neither; it takes the cameras of the views with one.
     for (const vtkMeshNBV::ViewBlock& block : vtkMeshNBV::ExtractViews(views))
     {
-      meshnbv::View view = block.view;
-      if (block.hasPixels && view.image_path.empty())
-      {
-        view.image_path = "(pixels)"; // the planner needs to know it has an image, not to read it
-      }
-      scene.views.push_back(std::move(view));
+      const bool pixelsOnly = block.hasPixels && block.view.image_path.empty();
+      scene.views.push_back(
+        pixelsOnly && block.view.used ? vtkMeshNBV::ToViewWithPixels(block) : block.view);
     }
     std::vector<meshnbv::View> given;
     if (candidates)

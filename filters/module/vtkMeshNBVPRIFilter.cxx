@@ -13,13 +13,11 @@
 
 #include "vtkMeshNBVConversion.h"
 #include "vtkMeshNBVProgress.h"
-#include "vtkMeshNBVTemporaryFolder.h"
 
 #include "meshnbv/error.h"
 #include "meshnbv/pri.h"
 
 #include <algorithm>
-#include <memory>
 
 vtkStandardNewMacro(vtkMeshNBVPRIFilter);
 
@@ -82,32 +80,14 @@ int vtkMeshNBVPRIFilter::RequestData(
     }
     meshnbv::Scene scene;
     scene.mesh = vtkMeshNBV::ToTriangleMesh(input);
-    // Pixels carried by the pipeline are what is compared: they reach the
-    // core as lossless PNG files in a private temporary folder (the core
-    // reads images by path); blocks without pixels use their ImagePath.
-    std::unique_ptr<vtkMeshNBV::TemporaryFolder> folder;
+    // Pixels carried by the pipeline are what is compared: each block's
+    // pixels are converted once and handed to the core in memory (no file).
+    // Blocks without pixels are read from their ImagePath through the core's
+    // bounded cache. Views kept aside (Used = 0) are not read: not converted.
     for (const vtkMeshNBV::ViewBlock& block : vtkMeshNBV::ExtractViews(views))
     {
-      meshnbv::View view = block.view;
-      if (block.hasPixels && view.used)
-      {
-        const meshnbv::Image image = vtkMeshNBV::ToImage(block);
-        if (image.width() != view.camera.width || image.height() != view.camera.height)
-        {
-          throw meshnbv::Error("view '" + view.label + "': the pixels are " +
-            std::to_string(image.width()) + "x" + std::to_string(image.height()) +
-            " but its camera says " + std::to_string(view.camera.width) + "x" +
-            std::to_string(view.camera.height));
-        }
-        if (!folder)
-        {
-          folder = std::make_unique<vtkMeshNBV::TemporaryFolder>();
-        }
-        view.image_path =
-          folder->Path() + "/view_" + std::to_string(scene.views.size()) + ".png";
-        image.save(view.image_path);
-      }
-      scene.views.push_back(std::move(view));
+      scene.views.push_back(
+        block.hasPixels && block.view.used ? vtkMeshNBV::ToViewWithPixels(block) : block.view);
     }
 
     meshnbv::PriOptions options;

@@ -16,6 +16,9 @@
  * vtkMultiBlockDataSet of vtkImageData as vtkMeshNBVSceneReader's output 1
  * makes them (camera in field data; pixels as point scalars, or else the
  * file named by "ImagePath"). Views with "Used" = 0 do not take part.
+ * Pixels (unsigned char, or unsigned short scaled to 8 bits; 1 to 4
+ * components) are converted once and handed to the core in memory: no file
+ * is written or read for them.
  *
  * Output: the mesh with two cell arrays, PRI (float, NaN where undefined)
  * and PRIViews (int, the views compared per face), named by

@@ -37,7 +37,9 @@ Process meshlabserver(const std::string& arguments) {
   // ctest runs the tests in parallel processes.
   const int display = 200 + int(getpid() % 300);
   return run(std::string(XVFB_RUN) + " -a -n " + std::to_string(display) +
-             " -s '-screen 0 1280x1024x24' " + quote(MESHLAB_SERVER) + " " + arguments);
+             " -s '-screen 0 1280x1024x24' bash " + quote(WITHOUT_TEMP_FOLDERS) + " " +
+             quote((fs::path(WORK_DIR) / "readonly_tmp").string()) + " " + quote(MESHLAB_SERVER) +
+             " " + arguments);
 }
 
 Process meshnbv_cli(const std::string& arguments) {
@@ -53,6 +55,13 @@ std::string project_copy(const std::string& test_name) {
   fs::remove_all(dir);
   fs::create_directories(dir.parent_path());
   fs::copy(source, dir, fs::copy_options::recursive);
+  return dir.string();
+}
+
+std::string scratch_dir(const std::string& test_name) {
+  const fs::path dir = fs::path(WORK_DIR) / "scratch" / (test_name + "." + std::to_string(getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
   return dir.string();
 }
 

@@ -8,8 +8,6 @@
 #include <fstream>
 #include <random>
 
-#include <unistd.h>
-
 #include <QDomDocument>
 #include <QString>
 #include <QStringList>
@@ -18,6 +16,7 @@
 #include <vcg/math/shot.h>
 #include <wrap/qt/shot_qt.h>
 
+#include "meshlab_test_support.h"
 #include "meshnbv/error.h"
 #include "meshnbv/io/scene_io.h"
 #include "shot_conversion.h"
@@ -132,9 +131,7 @@ TEST(CameraConversion, EqualsCoreReadingOfTheSameMlpText) {
       "ViewportPx=\"1280 960\" CenterPx=\"%7 %8\"/>")
       .arg(g(-c.x()), g(-c.y()), g(-c.z()), rot, g(truth.fx * 0.0369161),
            g(truth.fx * 0.0369161 / truth.fy), g(truth.cx + 0.5), g(960 - truth.cy - 0.5));
-  const std::filesystem::path dir = std::filesystem::temp_directory_path() /
-                                    ("meshnbv_meshlab_camera_" + std::to_string(::getpid()));
-  std::filesystem::create_directories(dir);
+  const std::filesystem::path dir = meshlab_test::scratch_dir("camera_mlp_text");
   const std::string mlp = (dir / "one.mlp").string();
   std::ofstream(mlp) << "<!DOCTYPE MeshLabDocument>\n<MeshLabProject>\n <MeshGroup/>\n"
                         " <RasterGroup>\n  <MLRaster label=\"a\">\n   "

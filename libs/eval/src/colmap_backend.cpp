@@ -123,6 +123,7 @@ ColmapWorkspace::ColmapWorkspace(const std::string& cache_dir, std::vector<View>
   for (std::size_t i = 0; i < views_.size(); ++i) {
     const View& v = views_[i];
     if (!v.has_image()) throw Error("colmap: view '" + v.label + "' has no image");
+    v.image_file("COLMAP (an external program)");
     if (!fs::exists(v.image_path)) throw Error("colmap: image not found", v.image_path);
     std::string name = fs::path(v.image_path).filename().string();
     if (!seen.insert(name).second) {
@@ -227,7 +228,7 @@ void ColmapWorkspace::detach(const std::string& dir) {
 
 int ColmapWorkspace::add_view(const View& view, const std::vector<int>& match_with) {
   if (!detached_) throw Error("colmap: add_view needs a detached workspace");
-  if (!view.has_image() || !fs::exists(view.image_path))
+  if (!view.has_image() || !fs::exists(view.image_file("COLMAP (an external program)")))
     throw Error("colmap: the new view has no image", view.image_path);
   std::string name = fs::path(view.image_path).filename().string();
   for (const auto& n : names_)

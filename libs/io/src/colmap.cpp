@@ -511,6 +511,7 @@ void write_colmap(const Scene& scene, const std::string& folder, bool overwrite)
   if (scene.views.empty())
     throw Error("the scene has no view; a COLMAP model needs at least one image", folder);
   // Everything that can fail is checked before the first file is written.
+  for (const View& v : scene.views) v.image_file("a COLMAP model");
   const ColmapModelText text = build_model_text(scene, dir);
   const std::string cameras = (dir / "cameras.txt").string();
   const std::string images = (dir / "images.txt").string();

@@ -150,7 +150,7 @@ void write_json_scene(const Scene& scene, const std::string& path, const std::st
                 {c.R(2, 0), c.R(2, 1), c.R(2, 2)}};
     cam["t"] = {c.t.x(), c.t.y(), c.t.z()};
     views.push_back({{"label", v.label},
-                     {"image", v.has_image() ? json(relative_to(v.image_path, base)) : json(nullptr)},
+                     {"image", v.has_image() ? json(relative_to(v.image_file("a JSON scene"), base)) : json(nullptr)},
                      {"used", v.used},
                      {"camera", cam}});
   }

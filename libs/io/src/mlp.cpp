@@ -218,6 +218,7 @@ void write_mlp(const Scene& scene, const std::string& path, const std::string& m
                bool overwrite) {
   for (const auto& v : scene.views) {
     v.camera.check("view '" + v.label + "'");
+    v.image_file("a MeshLab project (.mlp)");
     if (v.camera.has_distortion())
       throw Error("view '" + v.label + "' has radial distortion, which a MeshLab project cannot "
                   "represent; undistort first or write COLMAP/JSON",
@@ -269,7 +270,7 @@ void write_mlp(const Scene& scene, const std::string& path, const std::string& m
     if (v.has_image()) {
       pugi::xml_node plane = r.append_child("Plane");
       plane.append_attribute("semantic") = "1";
-      plane.append_attribute("fileName") = relative_to(v.image_path, base).c_str();
+      plane.append_attribute("fileName") = relative_to(v.image_file("a MeshLab project (.mlp)"), base).c_str();
     }
   }
   write_atomically(path, [&](std::ostream& out) { doc.save(out, " "); }, overwrite);

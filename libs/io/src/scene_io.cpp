@@ -116,6 +116,9 @@ void write_scene(const Scene& scene, const std::string& path, const SceneWriteOp
     mesh_file = (p.parent_path() / (p.stem().string() + "_mesh.ply")).string();
   }
   check_can_write(path, options.overwrite);
+  // Before the mesh is written: a file cannot reference an in-memory image.
+  for (const auto& v : scene.views)
+    v.image_file(format == SceneFormat::Mlp ? "a MeshLab project (.mlp)" : "a JSON scene");
   if (format == SceneFormat::Mlp)
     for (const auto& v : scene.views)
       if (v.camera.has_distortion())

@@ -28,6 +28,8 @@ std::vector<View> suggestion_views(const SuggestResult& result) {
 void write_suggestions_mlp(const Scene& scene, const SuggestResult& result, const std::string& path,
                            bool overwrite) {
   check_can_write(path, overwrite);
+  // Before the mesh is written: a project cannot reference an in-memory image.
+  for (const View& v : scene.views) v.image_file("a MeshLab project (.mlp)");
   Scene out;
   out.views = scene.views;
   for (auto& v : suggestion_views(result)) out.views.push_back(v);

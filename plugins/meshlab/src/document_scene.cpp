@@ -71,8 +71,7 @@ std::vector<float> face_quality(const ModelMesh& mesh) {
   return q;
 }
 
-DocumentScene scene_from_document(MeshDocument& document, MeshModel& model,
-                                  RasterImageFiles* images) {
+DocumentScene scene_from_document(MeshDocument& document, MeshModel& model) {
   DocumentScene out;
   ModelMesh converted = mesh_from_model(model);
   out.scene.mesh = std::move(converted.mesh);
@@ -94,9 +93,13 @@ DocumentScene scene_from_document(MeshDocument& document, MeshModel& model,
       plane = raster->planeList.contains(raster->currentPlane) ? raster->currentPlane
                                                                : raster->planeList.first();
     if (plane) {
-      const std::string file = plane->fullPathFileName.toStdString();
-      view.image_path = images ? images->path_for(file, plane->image, view.label)
-                               : (file.empty() ? std::string("<in memory>") : file);
+      if (!plane->image.isNull()) {
+        view.pixels = std::make_shared<const Image>(image_from_qimage(plane->image));
+      } else {
+        view.image_path = plane->fullPathFileName.toStdString();
+        if (view.image_path.empty())
+          throw Error("raster '" + view.label + "': its image plane has neither pixels nor a file");
+      }
       ++out.views_with_image;
     }
     out.scene.views.push_back(std::move(view));

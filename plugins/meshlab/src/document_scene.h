@@ -11,8 +11,6 @@
 
 namespace meshnbv::meshlab {
 
-class RasterImageFiles;
-
 struct ModelMesh {
   TriangleMesh mesh;
   std::vector<CFaceO*> faces;  // MeshLab face of each core face (deleted faces skipped)
@@ -35,11 +33,13 @@ struct DocumentScene {
 
 // The mesh layer `model` (mesh_from_model) and every raster layer: a raster
 // with an image plane is an existing view, one without is a candidate view
-// (image_path empty). With `images`, each image is made readable for the
-// core (RasterImageFiles::path_for); without, image_path only marks that
-// the raster has one. Throws meshnbv::Error with the reason.
-DocumentScene scene_from_document(MeshDocument& document, MeshModel& model,
-                                  RasterImageFiles* images);
+// (no image). A plane's image is the QImage MeshLab holds, converted once
+// (image_from_qimage) and held by the view in memory (View::pixels): no
+// file is read or written. A plane whose QImage is null (MeshLab could not
+// decode its file) keeps the file as image_path, for the core's loader to
+// try (it names the file and the view when it cannot). Throws
+// meshnbv::Error with the reason.
+DocumentScene scene_from_document(MeshDocument& document, MeshModel& model);
 
 // Replaces the content of `model` by `mesh`: vertices, faces, face colours
 // (when present) and the face attribute `quality_attribute` as face quality

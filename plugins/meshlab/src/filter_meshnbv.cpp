@@ -15,7 +15,6 @@
 #include "meshnbv/results.h"
 #include "meshnbv/planner.h"
 #include "meshnbv/pri.h"
-#include "raster_images.h"
 #include "shot_conversion.h"
 
 using namespace meshnbv;
@@ -399,8 +398,7 @@ void FilterMeshNbvPlugin::computePri(MeshDocument& document, const RichParameter
   MeshModel* model = document.mm();
   if (!model) throw Error("no current mesh layer");
   const PriOptions options = pri_options(par);
-  meshlab::RasterImageFiles files;
-  meshlab::DocumentScene ds = meshlab::scene_from_document(document, *model, &files);
+  meshlab::DocumentScene ds = meshlab::scene_from_document(document, *model);
   require_rasters(document, ds.views_with_image, 2, "PRI compares the photos of at least two");
   Progress progress(callback, "Compute PRI");
   const PriResult r = compute_pri(ds.scene, options, progress.callback());
@@ -427,9 +425,6 @@ void FilterMeshNbvPlugin::computePri(MeshDocument& document, const RichParameter
         << s.worst[0].views << " views)";
     logLine(pct.str());
   }
-  if (files.copies() > 0)
-    logLine("(" + std::to_string(files.copies()) +
-            " raster images without a readable file were passed through temporary copies)");
   logLine("face quality = PRI (NaN where undefined); face colour green (p5) .. red (p95), grey "
           "where undefined");
 }
@@ -461,9 +456,7 @@ void FilterMeshNbvPlugin::suggestNextView(MeshDocument& document, const RichPara
   const SuggestOptions options = suggest_options(par);
   const bool have_quality = model->hasDataMask(MeshModel::MM_FACEQUALITY);
   const bool compute = !(par.getBool("use_face_quality") && have_quality);
-  meshlab::RasterImageFiles files;
-  meshlab::DocumentScene ds =
-      meshlab::scene_from_document(document, *model, compute ? &files : nullptr);
+  meshlab::DocumentScene ds = meshlab::scene_from_document(document, *model);
   require_rasters(document, ds.views_with_image, compute ? 2 : 1,
                   "the existing photos set the candidates' intrinsics, distance and parallax");
   if (options.mode == CandidateMode::Given && ds.views_with_image == int(ds.scene.views.size()))

@@ -1,11 +1,21 @@
 #include "raster_images.h"
 
-#include <QFileInfo>
-#include <QTemporaryDir>
+#include <QRgba64>
 
 #include "meshnbv/error.h"
 
 namespace meshnbv::meshlab {
+namespace {
+
+// round(v / 257) in integers: OpenCV's 16- to 8-bit conversion in the core's loader.
+inline std::uint8_t to8(quint16 v) { return std::uint8_t((unsigned(v) + 128u) / 257u); }
+
+bool is_16_bit_colour(QImage::Format f) {
+  return f == QImage::Format_RGBA64 || f == QImage::Format_RGBX64 ||
+         f == QImage::Format_RGBA64_Premultiplied;
+}
+
+}  // namespace
 
 Image image_from_qimage(const QImage& image) {
   if (image.isNull()) throw Error("empty image");
@@ -16,12 +26,36 @@ Image image_from_qimage(const QImage& image) {
   const bool is_grey = f == QImage::Format_Grayscale8 || f == QImage::Format_Grayscale16 ||
                     ((f == QImage::Format_Indexed8 || f == QImage::Format_Mono ||
                       f == QImage::Format_MonoLSB) && image.isGrayscale());
+  if (f == QImage::Format_Grayscale16) {
+    Image out(image.width(), image.height(), 1);
+    for (int y = 0; y < image.height(); ++y) {
+      const quint16* row = reinterpret_cast<const quint16*>(image.constScanLine(y));
+      std::uint8_t* dst = out.pixel(0, y);
+      for (int x = 0; x < image.width(); ++x) dst[x] = to8(row[x]);
+    }
+    return out;
+  }
   if (is_grey) {
     const QImage grey = image.convertToFormat(QImage::Format_Grayscale8);
     Image out(grey.width(), grey.height(), 1);
     for (int y = 0; y < grey.height(); ++y) {
       const uchar* row = grey.constScanLine(y);
       std::copy(row, row + grey.width(), out.pixel(0, y));
+    }
+    return out;
+  }
+  if (is_16_bit_colour(f)) {
+    // Non-premultiplied 16-bit colour, channels as stored (alpha dropped).
+    const QImage rgba = image.convertToFormat(QImage::Format_RGBA64);
+    Image out(rgba.width(), rgba.height(), 3);
+    for (int y = 0; y < rgba.height(); ++y) {
+      const QRgba64* row = reinterpret_cast<const QRgba64*>(rgba.constScanLine(y));
+      std::uint8_t* dst = out.pixel(0, y);
+      for (int x = 0; x < rgba.width(); ++x, dst += 3) {
+        dst[0] = to8(row[x].red());
+        dst[1] = to8(row[x].green());
+        dst[2] = to8(row[x].blue());
+      }
     }
     return out;
   }
@@ -39,30 +73,6 @@ Image image_from_qimage(const QImage& image) {
     }
   }
   return out;
-}
-
-RasterImageFiles::RasterImageFiles() = default;
-RasterImageFiles::~RasterImageFiles() = default;
-
-std::string RasterImageFiles::path_for(const std::string& file, const QImage& image,
-                                       const std::string& label) {
-  const QFileInfo info(QString::fromStdString(file));
-  if (!file.empty() && info.isFile() && info.isReadable()) return file;
-  if (image.isNull())
-    throw Error("raster '" + label + "': its image '" + file +
-                "' is neither loaded nor readable on disk");
-  if (!dir_) {
-    dir_ = std::make_unique<QTemporaryDir>();
-    if (!dir_->isValid()) throw Error("cannot create a temporary folder for raster images");
-  }
-  const Image copy = image_from_qimage(image);
-  const std::string path = dir_->filePath(QString("raster_%1.%2")
-                                              .arg(copies_)
-                                              .arg(copy.channels() == 1 ? "pgm" : "ppm"))
-                               .toStdString();
-  copy.save(path);
-  ++copies_;
-  return path;
 }
 
 }  // namespace meshnbv::meshlab

@@ -13,7 +13,10 @@ OUT=$2
 HERE=$(cd "$(dirname "$0")" && pwd)
 REPO=$(cd "$HERE/../../.." && pwd)
 PREFIX=$BUILD/plugins/meshlab/prefix
-WORK=$(mktemp -d)
+# Work files in the build folder (not the system's temporary folder).
+WORK=$BUILD/plugins/meshlab/gui_screenshot
+rm -rf "$WORK"
+mkdir -p "$WORK"
 pids=()
 cleanup() {
   for p in "${pids[@]}"; do kill "$p" 2>/dev/null || true; done
