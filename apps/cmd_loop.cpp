@@ -178,7 +178,9 @@ void add_loop_command(CLI::App& app) {
     if (!a->bootstrap_views.empty()) {
       o.bootstrap_views.clear();
       for (double x : parse_numbers(a->bootstrap_views, "--bootstrap-views")) {
-        if (x != std::floor(x) || x < 0) throw Error("--bootstrap-views: indices must be whole numbers >= 0");
+        if (x != std::floor(x) || x < 0 || x > 1e6)
+          throw Error("--bootstrap-views: indices must be whole numbers in [0, 1000000], got '" +
+                      a->bootstrap_views + "'");
         o.bootstrap_views.push_back(int(x));
       }
     }

@@ -34,6 +34,10 @@ std::string format_option_value(double value) {
   if (std::isnan(value)) return "nan";
   if (std::isinf(value)) return value > 0 ? "inf" : "-inf";
   char buf[64];
+  if (value == std::floor(value) && std::abs(value) < 1e15) {  // whole numbers as integers
+    const auto r = std::to_chars(buf, buf + sizeof(buf), static_cast<long long>(value));
+    return std::string(buf, r.ptr);
+  }
   const auto r = std::to_chars(buf, buf + sizeof(buf), value);
   return std::string(buf, r.ptr);
 }

@@ -156,6 +156,8 @@ SynthProject make_synthetic_project(const SynthOptions& options) {
   g.seed = o.seed;
   p.truth = o.scene == "object" ? load_object(o.mesh_file) : make_scene_mesh(o.scene, g);
   DegradeResult degraded = degrade(p.truth, o.degradations, o.seed);
+  if (degraded.mesh.empty())
+    throw Error("the degradations removed every face of the scene (a hole or decimation too large)");
   p.region_centers = degraded.region_centers;
   p.scene.mesh = std::move(degraded.mesh);
   p.scene.mesh.face_attributes.erase(kMaterialAttribute);
