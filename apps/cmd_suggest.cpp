@@ -106,6 +106,8 @@ void add_suggest_command(CLI::App& app) {
       if (!p->empty()) io::check_can_write(*p, a->overwrite);
     if (!a->colmap.empty()) check_colmap_output(a->colmap, a->overwrite);
     Scene scene = a->input.read();
+    std::vector<View> given;  // read before the PRI is computed: a bad file fails early
+    if (!a->candidates_from.empty()) given = io::read_scene(a->candidates_from, {}).views;
     ProgressBar bar(a->quiet);
     std::vector<float> pri;
     std::string pri_from;
@@ -124,11 +126,6 @@ void add_suggest_command(CLI::App& app) {
     } else {
       pri = compute_pri(scene, a->pri, bar.callback()).pri;
       pri_from = "computed (" + a->measure + ")";
-    }
-    std::vector<View> given;
-    if (!a->candidates_from.empty()) {
-      io::SceneReadOptions ro;
-      given = io::read_scene(a->candidates_from, ro).views;
     }
     const SuggestResult r = suggest_views(scene, pri, o, given, bar.callback());
     bar.finish();

@@ -156,7 +156,7 @@ expect_error "edge length must be 0 (the scene's default, 0.8) or in [0.2, 100] 
   "$MESHNBV" synth city --out "$TMP/s3" --edge-length 1e-9
 expect_error "strength is a share of the bounding-box diagonal and must be in [0, 1], got 1e+300" \
   "$MESHNBV" synth city --out "$TMP/s3" --degrade noise:1e300
-expect_error "loop bootstrap must be in [2, 1000] views, got 1000000" \
+expect_error "loop bootstrap must be in [2, 1000] (at least 2 views), got 1000000" \
   "$MESHNBV" loop "$TMP/no_dataset" --out "$TMP/l2" --bootstrap 1000000
 expect_error "the degradations removed every face" "$MESHNBV" synth building --out "$TMP/s4" --views 2 --size 16x16 \
   --degrade hole:0:1

@@ -44,8 +44,8 @@ std::string mesher_name(MesherKind kind) {
 }
 
 void LoopOptions::check() const {
-  check_option(bootstrap >= 2 && bootstrap <= 1000, "loop bootstrap", "in [2, 1000] views",
-               bootstrap);
+  check_option(bootstrap >= 2 && bootstrap <= 1000, "loop bootstrap",
+               "in [2, 1000] (at least 2 views)", bootstrap);
   if (!bootstrap_views.empty() && int(bootstrap_views.size()) != bootstrap)
     throw Error("loop: " + std::to_string(bootstrap_views.size()) +
                 " bootstrap views given for a bootstrap of " + std::to_string(bootstrap));

@@ -91,9 +91,9 @@ void check_degradation(const Degradation& d, const std::string& label) {
     throw Error("degradation '" + label +
                 "': strength is a share of the bounding-box diagonal and must be in [0, 1], got " +
                 format_option_value(d.strength));
-  if (is_regional(d.kind) && (!std::isfinite(d.radius) || d.radius <= 0 || d.radius > 1))
+  if (is_regional(d.kind) && (!std::isfinite(d.radius) || d.radius <= 0 || d.radius > 10))
     throw Error("degradation '" + label +
-                "': radius must be a positive number, at most 1 (a share of the bounding-box "
+                "': radius must be a positive number, at most 10 (a share of the bounding-box "
                 "diagonal), got " + format_option_value(d.radius));
 }
 
