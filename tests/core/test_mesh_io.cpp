@@ -278,7 +278,7 @@ TEST(PlyIo, FarFromOriginMeshIsWrittenInDoubleAndReadsBackExactly) {
               std::string::npos)
         << "binary " << binary;
     io::PlyFileInfo info;
-    const TriangleMesh out = io::read_ply(path, &info);
+    const TriangleMesh out = io::read_ply_with_info(path, &info);
     EXPECT_EQ(info.coordinates, io::PlyCoordinateType::Float64);
     expect_round_trip(in, out, /*exact=*/true);
   }
@@ -289,7 +289,7 @@ TEST(PlyIo, FloatIsKeptWhereItMovesNoVertexBeyondAMillionthOfTheDiagonal) {
   // sample_mesh: diagonal ~1e5, float moves its vertices by < 0.001.
   io::write_ply(sample_mesh(), dir + "/near.ply");
   io::PlyFileInfo info;
-  io::read_ply(dir + "/near.ply", &info);
+  io::read_ply_with_info(dir + "/near.ply", &info);
   EXPECT_EQ(info.coordinates, io::PlyCoordinateType::Float32);
   // A 1 mm object 1 m from the origin: float's 6e-8 steps are 6e-5 of its
   // diagonal, so double.
@@ -297,7 +297,7 @@ TEST(PlyIo, FloatIsKeptWhereItMovesNoVertexBeyondAMillionthOfTheDiagonal) {
   small.vertices = {Vec3(1.0001, 1, 1), Vec3(1.0, 1.0007, 1), Vec3(1.0003, 1.0002, 1.0009)};
   small.faces = {{0, 1, 2}};
   io::write_ply(small, dir + "/small.ply");
-  const TriangleMesh back = io::read_ply(dir + "/small.ply", &info);
+  const TriangleMesh back = io::read_ply_with_info(dir + "/small.ply", &info);
   EXPECT_EQ(info.coordinates, io::PlyCoordinateType::Float64);
   EXPECT_EQ(back.vertices, small.vertices);
 }

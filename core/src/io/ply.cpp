@@ -834,9 +834,9 @@ bool needs_double(const TriangleMesh& mesh) {
 
 }  // namespace
 
-TriangleMesh read_ply(const std::string& path) { return read_ply(path, nullptr); }
+TriangleMesh read_ply(const std::string& path) { return read_ply_with_info(path, nullptr); }
 
-TriangleMesh read_ply(const std::string& path, PlyFileInfo* info) {
+TriangleMesh read_ply_with_info(const std::string& path, PlyFileInfo* info) {
   const std::string data = read_file(path);
   const PlyHeader header = HeaderParser(data, path).parse();
   if (info) {

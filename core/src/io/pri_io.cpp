@@ -44,7 +44,7 @@ std::vector<float> read_pri_for_mesh(const std::string& path, const TriangleMesh
   PlyFileInfo info;
   if (extension_lower(path) != ".ply")
     throw Error("the PRI mesh must be a PLY file (written by meshnbv pri)", path);
-  const TriangleMesh file = read_ply(path, &info);
+  const TriangleMesh file = read_ply_with_info(path, &info);
   const std::vector<float>* q = file.face_attribute("quality");
   if (!q) throw Error("no per-face 'quality' in the PRI mesh (write it with meshnbv pri)", path);
   const std::string different =

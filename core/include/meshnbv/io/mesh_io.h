@@ -18,7 +18,8 @@ enum class PlyCoordinateType { Integer, Float32, Float64 };
 struct PlyFileInfo {
   PlyCoordinateType coordinates = PlyCoordinateType::Float32;
 };
-TriangleMesh read_ply(const std::string& path, PlyFileInfo* info);
+// (A name of its own: an overload of read_ply could not be passed as a template argument.)
+TriangleMesh read_ply_with_info(const std::string& path, PlyFileInfo* info);
 TriangleMesh read_obj(const std::string& path);
 TriangleMesh read_off(const std::string& path);
 // By extension (.ply, .obj, .off); throws Error for anything else.
