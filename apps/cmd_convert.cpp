@@ -3,6 +3,7 @@
 #include <memory>
 
 #include "commands.h"
+#include "meshnbv/io/file_util.h"
 
 namespace meshnbv::cli {
 
@@ -20,10 +21,14 @@ void add_convert_command(CLI::App& app) {
       ->check(CLI::IsMember({"auto", "mlp", "json", "colmap"}));
   cmd->add_flag("--overwrite", *overwrite, "Replace existing output files");
   cmd->callback([=]() {
-    const Scene scene = input->read();
     io::SceneWriteOptions options;
-    options.format = io::parse_scene_format(*out_format);
+    options.format = io::scene_output_format(*output, io::parse_scene_format(*out_format));
     options.overwrite = *overwrite;
+    if (options.format == io::SceneFormat::Colmap)
+      check_colmap_output(*output, *overwrite);
+    else
+      io::check_can_write(*output, *overwrite);
+    const Scene scene = input->read();
     io::write_scene(scene, *output, options);
     std::cout << "wrote " << scene.views.size() << " views"
               << (scene.mesh.empty() ? "" : " and the mesh") << " to " << *output << "\n";

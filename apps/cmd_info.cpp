@@ -141,6 +141,7 @@ void add_info_command(CLI::App& app) {
   input->add_to(cmd);
   cmd->add_option("--json", *json_out, "Also write the summary as JSON to this file ('-' = stdout)");
   cmd->callback([input, json_out]() {
+    if (!json_out->empty() && *json_out != "-") io::check_can_write(*json_out, true);
     const Scene scene = input->read();
     const nlohmann::json summary = summarize(scene);
     if (*json_out == "-") {

@@ -171,7 +171,6 @@ void add_loop_command(CLI::App& app) {
     o.pri.measure = parse_measure(a->measure);
     o.suggest.energy.weights = parse_weights(a->weights);
     o.suggest.threads = o.pri.threads;
-    o.suggest.check();
     o.seed = o.suggest.sampling.seed;
     o.mesher = eval::parse_mesher(a->mesher);
     o.delaunay.labelling = eval::parse_labelling(a->labelling);
@@ -179,7 +178,9 @@ void add_loop_command(CLI::App& app) {
     if (!a->bootstrap_views.empty()) {
       o.bootstrap_views.clear();
       for (double x : parse_numbers(a->bootstrap_views, "--bootstrap-views")) {
-        if (x != std::floor(x) || x < 0) throw Error("--bootstrap-views: indices must be whole numbers >= 0");
+        if (x != std::floor(x) || x < 0 || x > 1e6)
+          throw Error("--bootstrap-views: indices must be whole numbers in [0, 1000000], got '" +
+                      a->bootstrap_views + "'");
         o.bootstrap_views.push_back(int(x));
       }
     }
@@ -190,7 +191,10 @@ void add_loop_command(CLI::App& app) {
     o.check();
     o.evaluation.thresholds = o.thresholds.empty() ? o.evaluation.thresholds : o.thresholds;
     o.evaluation.check();
-    if (fs::exists(fs::path(a->out) / "loop.json") && !a->overwrite)
+    io::check_can_write_folder(a->out);
+    if (!a->cache.empty()) io::check_can_write_folder(a->cache);
+    std::error_code ec;
+    if (fs::exists(fs::path(a->out) / "loop.json", ec) && !a->overwrite)
       throw Error("output folder holds results of a loop; pass --overwrite to replace them", a->out);
     if (!eval::colmap_available(o.colmap.executable))
       throw Error("COLMAP not found ('" + o.colmap.executable +

@@ -40,13 +40,14 @@ void add_run_command(CLI::App& app) {
   cmd->add_flag("--json", a->json, "Progress as JSON lines on stderr");
   cmd->callback([a]() {
     using clock = std::chrono::steady_clock;
+    SuggestOptions& so = a->suggest;
+    finish_options(&a->pri, a->measure, &so, a->mode, a->weights);
     const fs::path out(a->out);
+    io::check_can_write_folder(a->out);
     const fs::path report = out / "report.html";
     std::error_code ec;
     if (fs::exists(report, ec) && !a->overwrite)
       throw Error("output folder already holds a report; pass --overwrite to replace it", a->out);
-    SuggestOptions& so = a->suggest;
-    finish_options(&a->pri, a->measure, &so, a->mode, a->weights);
     std::vector<std::pair<std::string, double>> timings;
     auto t0 = clock::now();
     auto lap = [&](const std::string& step) {

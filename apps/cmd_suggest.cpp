@@ -7,6 +7,7 @@
 #include "meshnbv/error.h"
 #include "meshnbv/io/file_util.h"
 #include "meshnbv/io/mesh_io.h"
+#include "meshnbv/io/pri_io.h"
 #include "meshnbv/io/suggestions_io.h"
 #include "meshnbv/planner.h"
 #include "progress_bar.h"
@@ -99,34 +100,32 @@ void add_suggest_command(CLI::App& app) {
   cmd->callback([a]() {
     SuggestOptions& o = a->suggest;
     finish_options(&a->pri, a->measure, &o, a->mode, a->weights);
+    if (!a->candidates_from.empty() && o.mode != CandidateMode::Given)
+      throw Error("--candidates-from needs --candidates given");
     for (const std::string* p : {&a->out, &a->mlp, &a->frustums})
       if (!p->empty()) io::check_can_write(*p, a->overwrite);
+    if (!a->colmap.empty()) check_colmap_output(a->colmap, a->overwrite);
     Scene scene = a->input.read();
+    std::vector<View> given;  // read before the PRI is computed: a bad file fails early
+    if (!a->candidates_from.empty()) given = io::read_scene(a->candidates_from, {}).views;
     ProgressBar bar(a->quiet);
     std::vector<float> pri;
     std::string pri_from;
     if (!a->pri_file.empty()) {
-      TriangleMesh with_pri = io::read_mesh(a->pri_file);
-      const auto* q = with_pri.face_attribute("quality");
-      if (!q) throw Error("no per-face 'quality' in the PRI mesh (write it with meshnbv pri)", a->pri_file);
-      if (!scene.mesh.empty() && scene.mesh.num_faces() != with_pri.num_faces())
-        throw Error("the PRI mesh has " + std::to_string(with_pri.num_faces()) +
-                        " faces, the scene's mesh " + std::to_string(scene.mesh.num_faces()),
-                    a->pri_file);
-      pri = *q;
-      scene.mesh = std::move(with_pri);
-      scene.mesh_path = a->pri_file;
+      // Only the PRI is taken from the file: the scene keeps its own mesh
+      // (the file may hold it at float precision), which the file's must match.
+      if (scene.mesh.empty()) {
+        // A scene without a mesh (COLMAP, Middlebury): the PRI file's mesh is the one.
+        scene.mesh = io::read_mesh(a->pri_file);
+        scene.mesh.face_attributes.clear();
+        scene.mesh.face_colors.clear();
+        scene.mesh_path = a->pri_file;
+      }
+      pri = io::read_pri_for_mesh(a->pri_file, scene.mesh);
       pri_from = a->pri_file;
     } else {
       pri = compute_pri(scene, a->pri, bar.callback()).pri;
       pri_from = "computed (" + a->measure + ")";
-    }
-    std::vector<View> given;
-    if (!a->candidates_from.empty()) {
-      if (o.mode != CandidateMode::Given)
-        throw Error("--candidates-from needs --candidates given");
-      io::SceneReadOptions ro;
-      given = io::read_scene(a->candidates_from, ro).views;
     }
     const SuggestResult r = suggest_views(scene, pri, o, given, bar.callback());
     bar.finish();

@@ -5,6 +5,7 @@
 
 #include "commands.h"
 #include "meshnbv/error.h"
+#include "meshnbv/io/file_util.h"
 #include "meshnbv/synth/project.h"
 #include "progress_bar.h"
 
@@ -58,6 +59,8 @@ void add_synth_command(CLI::App& app) {
     o.render.samples_per_pixel = a->samples;
     o.write_depth = a->depth;
     o.overwrite = a->overwrite;
+    o.check();
+    io::check_can_write_folder(a->out);
     ProgressBar bar(a->quiet);
     const auto p = synth::write_synthetic_project(o, a->out, bar.callback());
     bar.finish();

@@ -18,6 +18,11 @@ struct SceneInput {
   Scene read() const;
 };
 
+// Before any work: the folder of a COLMAP text model can be written, and
+// its files do not exist unless `overwrite` (io::check_can_write_folder,
+// io::check_can_write). Throws Error otherwise.
+void check_colmap_output(const std::string& folder, bool overwrite);
+
 // Subcommands run their work in a callback and throw meshnbv::Error on failure.
 void add_info_command(CLI::App& app);
 void add_convert_command(CLI::App& app);

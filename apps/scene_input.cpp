@@ -1,5 +1,9 @@
 #include "commands.h"
 
+#include <filesystem>
+
+#include "meshnbv/io/file_util.h"
+
 namespace meshnbv::cli {
 
 void SceneInput::add_to(CLI::App* cmd) {
@@ -19,6 +23,12 @@ Scene SceneInput::read() const {
   options.mesh_path = mesh;
   options.image_dir = image_dir;
   return io::read_scene(path, options);
+}
+
+void check_colmap_output(const std::string& folder, bool overwrite) {
+  io::check_can_write_folder(folder);
+  for (const char* file : {"cameras.txt", "images.txt", "points3D.txt"})
+    io::check_can_write((std::filesystem::path(folder) / file).string(), overwrite);
 }
 
 }  // namespace meshnbv::cli

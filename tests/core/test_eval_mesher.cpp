@@ -213,7 +213,7 @@ TEST(EvalMesher, BadCameraIndexIsAnError) {
   MESHNBV_EXPECT_ERROR_CONTAINS(mesh_from_visibility(pts, {Vec3(0, 0, 5)}), "names camera 3");
   VisibilityMesherOptions o;
   o.surface_weight = -1;
-  MESHNBV_EXPECT_ERROR_CONTAINS(mesh_from_visibility({}, {}, o), "surface weight");
+  MESHNBV_EXPECT_ERROR_CONTAINS(mesh_from_visibility({}, {}, o), "surface_weight");
 }
 
 }  // namespace

@@ -19,6 +19,7 @@
 
 #include "meshnbv/error.h"
 #include "meshnbv/io/mesh_io.h"
+#include "meshnbv/io/pri_io.h"
 #include "meshnbv/mesh.h"
 #include "test_util.h"
 
@@ -249,6 +250,101 @@ TEST(PlyIo, RejectsNonFiniteVertexOnWrite) {
   m.vertices[2].y() = std::numeric_limits<double>::infinity();
   MESHNBV_EXPECT_ERROR_CONTAINS(io::write_ply(m, path), "vertex 2");
   EXPECT_FALSE(fs::exists(path));
+}
+
+// A georeferenced mesh: a 10 m building at (1e6, 2e6, 500). Float holds
+// these coordinates to 0.0625 m (x) and 0.125 m (y), far more than 1e-6 of
+// the diagonal, so write_ply stores double even when float was asked for,
+// and the mesh reads back exactly in both encodings.
+TriangleMesh far_from_origin_mesh() {
+  TriangleMesh m = sample_mesh();
+  m.vertices = {Vec3(0.1, 0.2, 0.3), Vec3(1.0 / 3.0, -2.5, 1e-7), Vec3(-7.0, 7.25, 2.0 / 7.0),
+                Vec3(3.123456789, -0.000123, 9.87654321)};
+  for (Vec3& v : m.vertices) v += Vec3(1e6, 2e6, 500);
+  return m;
+}
+
+TEST(PlyIo, FarFromOriginMeshIsWrittenInDoubleAndReadsBackExactly) {
+  const std::string dir = test::temp_dir("PlyIo.FarFromOrigin");
+  const TriangleMesh in = far_from_origin_mesh();
+  for (bool binary : {true, false}) {
+    const std::string path = dir + (binary ? "/binary.ply" : "/ascii.ply");
+    io::PlyWriteOptions options;
+    options.binary = binary;
+    ASSERT_FALSE(options.double_precision);  // float asked for
+    io::write_ply(in, path, options);
+    const std::string text = slurp(path);
+    EXPECT_NE(text.find("property double x\nproperty double y\nproperty double z\n"),
+              std::string::npos)
+        << "binary " << binary;
+    io::PlyFileInfo info;
+    const TriangleMesh out = io::read_ply_with_info(path, &info);
+    EXPECT_EQ(info.coordinates, io::PlyCoordinateType::Float64);
+    expect_round_trip(in, out, /*exact=*/true);
+  }
+}
+
+TEST(PlyIo, FloatIsKeptWhereItMovesNoVertexBeyondAMillionthOfTheDiagonal) {
+  const std::string dir = test::temp_dir("PlyIo.FloatKept");
+  // sample_mesh: diagonal ~1e5, float moves its vertices by < 0.001.
+  io::write_ply(sample_mesh(), dir + "/near.ply");
+  io::PlyFileInfo info;
+  io::read_ply_with_info(dir + "/near.ply", &info);
+  EXPECT_EQ(info.coordinates, io::PlyCoordinateType::Float32);
+  // A 1 mm object 1 m from the origin: float's 6e-8 steps are 6e-5 of its
+  // diagonal, so double.
+  TriangleMesh small;
+  small.vertices = {Vec3(1.0001, 1, 1), Vec3(1.0, 1.0007, 1), Vec3(1.0003, 1.0002, 1.0009)};
+  small.faces = {{0, 1, 2}};
+  io::write_ply(small, dir + "/small.ply");
+  const TriangleMesh back = io::read_ply_with_info(dir + "/small.ply", &info);
+  EXPECT_EQ(info.coordinates, io::PlyCoordinateType::Float64);
+  EXPECT_EQ(back.vertices, small.vertices);
+}
+
+// read_pri_for_mesh (meshnbv suggest --pri): the PRI comes from the file,
+// the mesh stays the caller's, and another mesh is refused.
+TEST(PriFile, QualityIsReadForTheSameMeshAtTheFilesPrecision) {
+  const std::string dir = test::temp_dir("PriFile.SameMesh");
+  const TriangleMesh mesh = sample_mesh();  // not float-exact, written as float
+  io::PlyWriteOptions options;
+  io::write_ply(mesh, dir + "/pri.ply", options);
+  const std::vector<float> pri = io::read_pri_for_mesh(dir + "/pri.ply", mesh);
+  ASSERT_EQ(pri.size(), 3u);
+  EXPECT_EQ(pri[0], 0.125f);
+  EXPECT_EQ(pri[2], 1e20f);
+  // Far from the origin the file is double, and must match to double.
+  const TriangleMesh far = far_from_origin_mesh();
+  io::write_ply(far, dir + "/far.ply", options);
+  EXPECT_EQ(io::read_pri_for_mesh(dir + "/far.ply", far).size(), 3u);
+  TriangleMesh moved = far;
+  moved.vertices[3].x() += 1e-6;  // within float precision, not within double's
+  MESHNBV_EXPECT_ERROR_CONTAINS(io::read_pri_for_mesh(dir + "/far.ply", moved),
+                                "vertex 3 is at");
+  MESHNBV_EXPECT_ERROR_CONTAINS(io::read_pri_for_mesh(dir + "/far.ply", moved), "different mesh");
+}
+
+TEST(PriFile, AnotherMeshIsRefused) {
+  const std::string dir = test::temp_dir("PriFile.OtherMesh");
+  const TriangleMesh mesh = sample_mesh();
+  io::write_ply(mesh, dir + "/pri.ply");
+  TriangleMesh moved = mesh;
+  moved.vertices[1].y() += 1e-3;  // beyond float precision at 2.5
+  MESHNBV_EXPECT_ERROR_CONTAINS(io::read_pri_for_mesh(dir + "/pri.ply", moved),
+                                "further apart than the file's float precision");
+  TriangleMesh fewer = mesh;
+  fewer.faces.pop_back();
+  for (auto& [name, values] : fewer.face_attributes) values.pop_back();
+  fewer.face_colors.pop_back();
+  MESHNBV_EXPECT_ERROR_CONTAINS(io::read_pri_for_mesh(dir + "/pri.ply", fewer),
+                                "the PRI mesh has 4 vertices and 3 faces, the scene's mesh 4 and 2");
+  TriangleMesh flipped = mesh;
+  std::swap(flipped.faces[0][1], flipped.faces[0][2]);
+  MESHNBV_EXPECT_ERROR_CONTAINS(io::read_pri_for_mesh(dir + "/pri.ply", flipped), "face 0");
+  TriangleMesh no_quality = mesh;
+  no_quality.face_attributes.erase("quality");
+  io::write_ply(no_quality, dir + "/plain.ply");
+  MESHNBV_EXPECT_ERROR_CONTAINS(io::read_pri_for_mesh(dir + "/plain.ply", mesh), "no per-face 'quality'");
 }
 
 // ------------------------------------------------------------- PLY: reads ---

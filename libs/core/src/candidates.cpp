@@ -80,10 +80,27 @@ PinholeCamera camera_looking(const PinholeCamera& intr, const Vec3& centre, cons
                                 intr.width, intr.height);
 }
 
+void SamplingOptions::check() const {
+  check_option(directions >= 1 && directions <= 65536, "directions", "in [1, 65536]", directions);
+  check_option(!distance_factors.empty() && distance_factors.size() <= 16,
+               "the number of distance_factors", "in [1, 16]", double(distance_factors.size()));
+  for (double f : distance_factors)
+    check_option(f > 0 && f <= 100, "distance factor", "in (0, 100]", f);
+}
+
+void RefineOptions::check() const {
+  check_option(iterations >= 0 && iterations <= 10000, "refine iterations", "in [0, 10000]",
+               iterations);
+  check_option(position_step > 0 && position_step <= 10, "refine position_step", "in (0, 10]",
+               position_step);
+  check_option(angle_step > 0 && angle_step <= 90, "refine angle_step", "in (0, 90] degrees",
+               angle_step);
+}
+
 CandidateSet sample_candidates(const WorstRegion& region, const PinholeCamera& intr, const Vec3& up,
                                double distance, const SafetyChecker& safety,
                                const SamplingOptions& o) {
-  if (o.directions < 1) throw Error("need at least one sampling direction");
+  o.check();
   if (!(distance > 0)) throw Error("viewing distance must be positive");
   CandidateSet out;
   // Orthonormal frame around the region's normal.
@@ -139,6 +156,7 @@ PinholeCamera pose(const PinholeCamera& start, const PoseFrame& f, const Vec3& u
 PinholeCamera refine_candidate(const PinholeCamera& start, const Vec3& up,
                                const EnergyEvaluator& energy, const SafetyChecker& safety,
                                const RefineOptions& o, std::size_t* evaluations) {
+  o.check();
   const Vec3 c0 = start.center();
   std::size_t evaluated = 0;
   PoseFrame frame{start.forward(), start.right(), -start.down()};

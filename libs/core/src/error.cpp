@@ -1,5 +1,8 @@
 #include "meshnbv/error.h"
 
+#include <charconv>
+#include <cmath>
+
 #include "meshnbv/progress.h"
 
 namespace meshnbv {
@@ -26,6 +29,22 @@ Error::Error(const std::string& message, const std::string& file, long line,
       file_(file),
       line_(line),
       element_(element) {}
+
+std::string format_option_value(double value) {
+  if (std::isnan(value)) return "nan";
+  if (std::isinf(value)) return value > 0 ? "inf" : "-inf";
+  char buf[64];
+  if (value == std::floor(value) && std::abs(value) < 1e15) {  // whole numbers as integers
+    const auto r = std::to_chars(buf, buf + sizeof(buf), static_cast<long long>(value));
+    return std::string(buf, r.ptr);
+  }
+  const auto r = std::to_chars(buf, buf + sizeof(buf), value);
+  return std::string(buf, r.ptr);
+}
+
+void check_option(bool ok, const std::string& name, const std::string& range, double value) {
+  if (!ok) throw Error(name + " must be " + range + ", got " + format_option_value(value));
+}
 
 void report_progress(const ProgressCallback& callback, double fraction, const std::string& stage) {
   if (callback && !callback(fraction, stage)) throw Cancelled();

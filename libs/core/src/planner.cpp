@@ -29,12 +29,15 @@ std::string candidate_mode_name(CandidateMode mode) {
 }
 
 void SuggestOptions::check() const {
-  if (worst_k < 1) throw Error("worst_k must be >= 1");
-  if (top < 1) throw Error("top must be >= 1");
-  if (!(safety_distance >= 0)) throw Error("safety_distance must be >= 0");
-  if (refine_best < 1) throw Error("refine_best must be >= 1");
-  if (threads < 0) throw Error("threads must be >= 0");
+  check_option(worst_k >= 1 && worst_k <= 10000, "worst_k", "in [1, 10000]", worst_k);
+  check_option(top >= 1 && top <= 100, "top", "in [1, 100]", top);
+  check_option(safety_distance >= 0 && safety_distance <= 10, "safety_distance",
+               "in [0, 10] (a share of the bounding-box diagonal)", safety_distance);
+  check_option(refine_best >= 1 && refine_best <= 64, "refine_best", "in [1, 64]", refine_best);
+  check_option(threads >= 0 && threads <= 1024, "threads", "in [0, 1024] (0 = all cores)", threads);
   energy.check();
+  sampling.check();
+  refine.check();
 }
 
 namespace {

@@ -30,20 +30,18 @@ std::string measure_name(Measure measure) {
 }
 
 void PriOptions::check() const {
-  if (samples_per_side < 0 || samples_per_side > 64)
-    throw Error("samples_per_side must be 0 (automatic) or 1..64, got " +
-                std::to_string(samples_per_side));
-  if (max_views_per_face < 0 || max_views_per_face == 1)
-    throw Error("max_views_per_face must be 0 (all) or >= 2, got " +
-                std::to_string(max_views_per_face));
-  if (threads < 0) throw Error("threads must be >= 0 (0 = all cores)");
-  if (!(textureless_variance >= 0)) throw Error("textureless_variance must be >= 0");
-  if (!(edge_margin >= 0 && edge_margin <= 16))
-    throw Error("edge_margin must be in [0, 16] pixels");
-  if (!(max_incidence_angle > 0 && max_incidence_angle <= 90))
-    throw Error("max_incidence_angle must be in (0, 90] degrees");
-  if (!(visibility.relative_eps >= 0 && visibility.relative_eps < 1))
-    throw Error("visibility relative eps must be in [0, 1)");
+  check_option(samples_per_side == 0 || (samples_per_side >= 2 && samples_per_side <= 64),
+               "samples_per_side", "0 (automatic) or in [2, 64]", samples_per_side);
+  check_option(max_views_per_face == 0 || max_views_per_face >= 2, "max_views_per_face",
+               "0 (all) or >= 2", max_views_per_face);
+  check_option(threads >= 0 && threads <= 1024, "threads", "in [0, 1024] (0 = all cores)", threads);
+  check_option(textureless_variance >= 0 && textureless_variance <= 1, "textureless_variance",
+               "in [0, 1]", textureless_variance);
+  check_option(edge_margin >= 0 && edge_margin <= 16, "edge_margin", "in [0, 16] pixels",
+               edge_margin);
+  check_option(max_incidence_angle > 0 && max_incidence_angle <= 90, "max_incidence_angle",
+               "in (0, 90] degrees", max_incidence_angle);
+  visibility.check();
 }
 
 double ssd_error(const float* a, const float* b, std::size_t n) {

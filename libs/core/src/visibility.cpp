@@ -3,7 +3,16 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include "meshnbv/error.h"
+
 namespace meshnbv {
+
+void VisibilityOptions::check() const {
+  check_option(relative_eps >= 0 && relative_eps < 1, "visibility relative_eps", "in [0, 1)",
+               relative_eps);
+  check_option(absolute_eps_of_diagonal >= 0 && absolute_eps_of_diagonal < 1,
+               "visibility absolute_eps_of_diagonal", "in [0, 1)", absolute_eps_of_diagonal);
+}
 
 bool point_visible(const RayCaster& caster, const PinholeCamera& camera, const Vec3& point,
                    double relative_eps, double absolute_eps) {

@@ -23,10 +23,13 @@ void ColmapOptions::check() const {
   if (executable.empty()) throw Error("colmap: no executable given");
   if (matcher != "exhaustive" && matcher != "sequential")
     throw Error("colmap: unknown matcher '" + matcher + "' (expected exhaustive or sequential)");
-  if (sequential_overlap < 1) throw Error("colmap: the sequential overlap must be >= 1");
-  if (threads < 1) throw Error("colmap: threads must be >= 1");
-  if (max_image_size < 100) throw Error("colmap: max image size must be >= 100");
-  if (!(peak_threshold > 0)) throw Error("colmap: the SIFT peak threshold must be positive");
+  check_option(sequential_overlap >= 1 && sequential_overlap <= 1000, "colmap sequential_overlap",
+               "in [1, 1000]", sequential_overlap);
+  check_option(threads >= 1 && threads <= 1024, "colmap threads", "in [1, 1024]", threads);
+  check_option(max_image_size >= 100 && max_image_size <= 100000, "colmap max_image_size",
+               "in [100, 100000] pixels", max_image_size);
+  check_option(peak_threshold > 0 && peak_threshold <= 1, "colmap SIFT peak_threshold", "in (0, 1]",
+               peak_threshold);
 }
 
 namespace {

@@ -44,25 +44,38 @@ std::string mesher_name(MesherKind kind) {
 }
 
 void LoopOptions::check() const {
-  if (bootstrap < 2) throw Error("loop: the bootstrap needs at least 2 views");
+  check_option(bootstrap >= 2 && bootstrap <= 1000, "loop bootstrap",
+               "in [2, 1000] (at least 2 views)", bootstrap);
   if (!bootstrap_views.empty() && int(bootstrap_views.size()) != bootstrap)
     throw Error("loop: " + std::to_string(bootstrap_views.size()) +
                 " bootstrap views given for a bootstrap of " + std::to_string(bootstrap));
-  if (max_views != 0 && max_views < bootstrap)
+  for (int v : bootstrap_views)
+    check_option(v >= 0, "loop bootstrap view index", ">= 0", v);
+  if (max_views != 0 && max_views >= 0 && max_views < bootstrap)
     throw Error("loop: max views (" + std::to_string(max_views) + ") is below the bootstrap (" +
                 std::to_string(bootstrap) + ")");
-  if (coverage_min_views < 1) throw Error("loop: coverage min views must be >= 1");
-  if (!(max_point_error > 0)) throw Error("loop: the maximum point error must be positive");
+  check_option(max_views == 0 || (max_views >= bootstrap && max_views <= 100000), "loop max_views",
+               "0 (all) or in [bootstrap, 100000]", max_views);
+  check_option(coverage_min_views >= 1 && coverage_min_views <= 1000, "loop coverage_min_views",
+               "in [1, 1000]", coverage_min_views);
+  check_option(max_point_error > 0 && max_point_error <= 1000, "loop max_point_error",
+               "in (0, 1000] pixels", max_point_error);
   if (save_meshes != "all" && save_meshes != "last" && save_meshes != "none")
     throw Error("loop: save meshes must be all, last or none, got '" + save_meshes + "'");
   if (out_dir.empty()) throw Error("loop: no output folder");
-  if (poisson.depth < 4 || poisson.depth > 14) throw Error("loop: poisson depth must be in [4, 14]");
-  if (poisson.neighbours < 3) throw Error("loop: poisson needs at least 3 neighbours per normal");
+  check_option(poisson.depth >= 4 && poisson.depth <= 14, "poisson depth", "in [4, 14]",
+               poisson.depth);
+  check_option(poisson.trim >= 0 && poisson.trim <= 100, "poisson trim", "in [0, 100]",
+               poisson.trim);
+  check_option(poisson.neighbours >= 3 && poisson.neighbours <= 1000, "poisson neighbours",
+               "in [3, 1000]", poisson.neighbours);
   for (double t : thresholds)
-    if (!(t > 0)) throw Error("loop: thresholds must be positive");
+    check_option(t > 0 && std::isfinite(t), "loop thresholds", "positive and finite", t);
   pri.check();
+  suggest.check();
   colmap.check();
   delaunay.check();
+  evaluation.check();
 }
 
 namespace {

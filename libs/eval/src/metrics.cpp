@@ -21,15 +21,16 @@ namespace meshnbv::eval {
 void EvaluationOptions::check() const {
   if (thresholds.empty()) throw Error("evaluation: at least one completeness threshold is needed");
   for (double t : thresholds)
-    if (!(t > 0) || !std::isfinite(t))
-      throw Error("evaluation: thresholds must be positive, got " + std::to_string(t));
+    check_option(t > 0 && std::isfinite(t), "evaluation: thresholds", "positive and finite", t);
   if (percentiles.empty()) throw Error("evaluation: at least one accuracy percentile is needed");
   for (double p : percentiles)
-    if (!(p > 0 && p <= 100))
-      throw Error("evaluation: percentiles must be in (0, 100], got " + std::to_string(p));
-  if (!(sample_spacing >= 0) || !std::isfinite(sample_spacing))
-    throw Error("evaluation: the sample spacing must be >= 0 (0 = automatic)");
-  if (max_samples < 100) throw Error("evaluation: max samples must be >= 100");
+    check_option(p > 0 && p <= 100, "evaluation: percentiles", "in (0, 100]", p);
+  check_option(sample_spacing >= 0 && std::isfinite(sample_spacing), "evaluation: the sample spacing",
+               ">= 0 and finite (0 = automatic)", sample_spacing);
+  check_option(max_samples >= 100 && max_samples <= 100000000, "evaluation: max_samples",
+               "in [100, 1e8]", double(max_samples));
+  check_option(threads >= 0 && threads <= 1024, "evaluation: threads", "in [0, 1024] (0 = all cores)",
+               threads);
 }
 
 std::vector<Vec3> sample_surface(const TriangleMesh& mesh, double spacing, std::uint64_t seed) {

@@ -58,14 +58,20 @@ std::string facet_support_name(FacetSupport support) {
 }
 
 void VisibilityMesherOptions::check() const {
-  if (!(visibility_weight > 0)) throw Error("mesher: the visibility weight must be positive");
-  if (!(surface_weight >= 0)) throw Error("mesher: the surface weight must be >= 0");
-  if (min_free_votes < 1) throw Error("mesher: min free votes must be >= 1");
-  if (min_views_per_point < 1) throw Error("mesher: min views per point must be >= 1");
-  if (!(max_spread >= 0) || !(max_isolation >= 0))
-    throw Error("mesher: the outlier limits must be >= 0 (0 = off)");
-  if (!(min_component_share >= 0 && min_component_share <= 1))
-    throw Error("mesher: the minimum component share must be in [0, 1]");
+  check_option(visibility_weight > 0 && visibility_weight <= 1e6, "mesher visibility_weight",
+               "in (0, 1e6]", visibility_weight);
+  check_option(surface_weight >= 0 && surface_weight <= 1e6, "mesher surface_weight", "in [0, 1e6]",
+               surface_weight);
+  check_option(min_free_votes >= 1 && min_free_votes <= 1000000, "mesher min_free_votes",
+               "in [1, 1000000]", min_free_votes);
+  check_option(min_views_per_point >= 1 && min_views_per_point <= 100000,
+               "mesher min_views_per_point", "in [1, 100000]", min_views_per_point);
+  check_option(max_spread >= 0 && max_spread <= 1e6, "mesher max_spread", "0 (off) or in (0, 1e6]",
+               max_spread);
+  check_option(max_isolation >= 0 && max_isolation <= 1e6, "mesher max_isolation",
+               "0 (off) or in (0, 1e6]", max_isolation);
+  check_option(min_component_share >= 0 && min_component_share <= 1, "mesher min_component_share",
+               "in [0, 1]", min_component_share);
 }
 
 namespace {

@@ -9,6 +9,7 @@
 #include <fstream>
 #include <random>
 #include <sstream>
+#include <fcntl.h>
 #include <unistd.h>
 
 #include "meshnbv/error.h"
@@ -42,15 +43,80 @@ std::string extension_lower(const std::string& path) {
   return ext;
 }
 
-void check_can_write(const std::string& path, bool overwrite) {
+namespace {
+
+void refuse_existing(const std::string& path, bool overwrite) {
   std::error_code ec;
   if (!overwrite && fs::exists(path, ec))
     throw Error("output exists; pass --overwrite to replace it", path);
 }
 
+// Throws unless a file can be created in the existing folder `dir`: tried
+// with a probe file (access() says yes to root on a mode-0555 folder and on
+// /proc, where creating files fails).
+void probe_folder(const fs::path& dir, const std::string& output) {
+  static std::atomic<unsigned> counter{0};
+  const fs::path probe = dir / (".meshnbv_write_probe_" + std::to_string(::getpid()) + "_" +
+                                std::to_string(counter++));
+  const int fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0600);
+  if (fd < 0) {
+    const int err = errno;
+    throw Error("cannot create files in folder '" + dir.string() + "': " + std::strerror(err),
+                output);
+  }
+  ::close(fd);
+  ::unlink(probe.c_str());
+}
+
+// The folder `dir` (empty = the current one) exists and is writable, or the
+// nearest existing ancestor is, so that it can be created.
+void check_folder_writable(fs::path dir, const std::string& output) {
+  if (dir.empty()) dir = ".";
+  std::error_code ec;
+  fs::path existing = dir;
+  while (true) {
+    const fs::file_status st = fs::status(existing, ec);
+    if (st.type() == fs::file_type::directory) break;
+    if (fs::exists(st))
+      throw Error("cannot write under '" + existing.string() + "': it is a file, not a folder",
+                  output);
+    if (ec && ec != std::errc::no_such_file_or_directory && ec != std::errc::not_a_directory)
+      throw Error("cannot write under '" + existing.string() + "': " + ec.message(), output);
+    const fs::path parent = existing.parent_path();
+    if (parent.empty() || parent == existing) {
+      existing = existing.is_absolute() ? existing.root_path() : fs::path(".");
+      break;
+    }
+    existing = parent;
+  }
+  probe_folder(existing, output);
+}
+
+}  // namespace
+
+void check_can_write(const std::string& path, bool overwrite) {
+  if (path.empty()) throw Error("empty output file name");
+  const fs::path target(path);
+  if (!target.has_filename()) throw Error("names a folder, expected a file", path);
+  std::error_code ec;
+  if (fs::is_directory(target, ec)) throw Error("is a folder, expected a file", path);
+  refuse_existing(path, overwrite);
+  check_folder_writable(target.parent_path(), path);
+}
+
+void check_can_write_folder(const std::string& path) {
+  if (path.empty()) throw Error("empty output folder name");
+  const fs::path dir(path);
+  std::error_code ec;
+  const fs::file_status st = fs::status(dir, ec);
+  if (fs::exists(st) && st.type() != fs::file_type::directory)
+    throw Error("is a file, expected a folder", path);
+  check_folder_writable(dir, path);
+}
+
 void write_atomically(const std::string& path, const std::function<void(std::ostream&)>& write,
                       bool overwrite, bool binary) {
-  check_can_write(path, overwrite);
+  refuse_existing(path, overwrite);
   fs::path target(path);
   fs::path folder = target.parent_path();
   std::error_code ec;

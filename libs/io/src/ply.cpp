@@ -811,11 +811,47 @@ void write_body(std::ostream& os, const TriangleMesh& mesh, const PlyWriteOption
   flush(0);
 }
 
+// Float coordinates would lose the mesh: a coordinate beyond float's range
+// would be written as inf, and far from the origin (georeferenced meshes,
+// coordinates ~1e6) rounding to float moves vertices by centimetres. Double
+// when rounding would move any vertex by more than 1e-6 of the bounding-box
+// diagonal.
+bool needs_double(const TriangleMesh& mesh) {
+  if (mesh.vertices.empty()) return false;
+  const double tolerance = 1e-6 * mesh.bounding_box().diagonal();
+  for (const Vec3& p : mesh.vertices) {
+    if (p.cwiseAbs().maxCoeff() > std::numeric_limits<float>::max()) return true;
+    double moved2 = 0;
+    for (int k = 0; k < 3; ++k) {
+      volatile float rounded = static_cast<float>(p[k]);  // not folded away (see test_mesh_io)
+      const double d = double(rounded) - p[k];
+      moved2 += d * d;
+    }
+    if (!(std::sqrt(moved2) <= tolerance)) return true;
+  }
+  return false;
+}
+
 }  // namespace
 
-TriangleMesh read_ply(const std::string& path) {
+TriangleMesh read_ply(const std::string& path) { return read_ply_with_info(path, nullptr); }
+
+TriangleMesh read_ply_with_info(const std::string& path, PlyFileInfo* info) {
   const std::string data = read_file(path);
   const PlyHeader header = HeaderParser(data, path).parse();
+  if (info) {
+    info->coordinates = PlyCoordinateType::Float64;
+    for (const PlyElement& e : header.elements) {
+      if (e.name != "vertex") continue;
+      for (const PlyProperty& p : e.properties) {
+        if (p.is_list || (p.name != "x" && p.name != "y" && p.name != "z")) continue;
+        if (is_integer(p.type))
+          info->coordinates = PlyCoordinateType::Integer;
+        else if (p.type == PlyType::Float32 && info->coordinates == PlyCoordinateType::Float64)
+          info->coordinates = PlyCoordinateType::Float32;
+      }
+    }
+  }
   check_counts_fit(header, data.size() - header.data_offset, path);
   TriangleMesh mesh;
   if (header.format == PlyFormat::Ascii) {
@@ -832,11 +868,8 @@ TriangleMesh read_ply(const std::string& path) {
 void write_ply(const TriangleMesh& mesh, const std::string& path, const PlyWriteOptions& requested) {
   check_can_write(path, requested.overwrite);
   check_writable(mesh, path);
-  // A coordinate beyond float's range would be written as inf: such a mesh
-  // is written in double instead.
   PlyWriteOptions options = requested;
-  for (const Vec3& p : mesh.vertices)
-    if (p.cwiseAbs().maxCoeff() > std::numeric_limits<float>::max()) options.double_precision = true;
+  if (!options.double_precision) options.double_precision = needs_double(mesh);
   write_atomically(
       path,
       [&](std::ostream& os) {

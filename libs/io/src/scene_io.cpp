@@ -88,21 +88,18 @@ Scene read_scene(const std::string& path, const SceneReadOptions& options) {
   return scene;
 }
 
+SceneFormat scene_output_format(const std::string& path, SceneFormat format) {
+  if (format != SceneFormat::Auto) return format;
+  const std::string ext = extension_lower(path);
+  if (ext == ".mlp") return SceneFormat::Mlp;
+  if (ext == ".json") return SceneFormat::Json;
+  if (ext.empty()) return SceneFormat::Colmap;  // a folder
+  throw Error("cannot tell the output format from the name: use .mlp, .json or a folder (COLMAP)",
+              path);
+}
+
 void write_scene(const Scene& scene, const std::string& path, const SceneWriteOptions& options) {
-  SceneFormat format = options.format;
-  if (format == SceneFormat::Auto) {
-    const std::string ext = extension_lower(path);
-    if (ext == ".mlp")
-      format = SceneFormat::Mlp;
-    else if (ext == ".json")
-      format = SceneFormat::Json;
-    else if (ext.empty())
-      format = SceneFormat::Colmap;  // a folder
-    else
-      throw Error("cannot tell the output format from the name: use .mlp, .json or a folder "
-                  "(COLMAP)",
-                  path);
-  }
+  const SceneFormat format = scene_output_format(path, options.format);
   if (format == SceneFormat::Colmap) {
     write_colmap(scene, path, options.overwrite);
     return;

@@ -82,14 +82,19 @@ double parse_number(const std::string& text, const std::string& field, const cha
 void check_degradation(const Degradation& d, const std::string& label) {
   if (!std::isfinite(d.strength) || d.strength < 0)
     throw Error("degradation '" + label + "': strength must be a non-negative number, got " +
-                std::to_string(d.strength));
+                format_option_value(d.strength));
   if (d.kind == DegradationKind::Decimate && !(d.strength < 1.0))
     throw Error("degradation '" + label +
                 "': decimate strength is the fraction of faces removed and must be in [0, 1), "
-                "got " + std::to_string(d.strength));
-  if (is_regional(d.kind) && (!std::isfinite(d.radius) || d.radius <= 0))
-    throw Error("degradation '" + label + "': radius must be a positive number, got " +
-                std::to_string(d.radius));
+                "got " + format_option_value(d.strength));
+  if (d.kind != DegradationKind::Decimate && !(d.strength <= 1.0))
+    throw Error("degradation '" + label +
+                "': strength is a share of the bounding-box diagonal and must be in [0, 1], got " +
+                format_option_value(d.strength));
+  if (is_regional(d.kind) && (!std::isfinite(d.radius) || d.radius <= 0 || d.radius > 10))
+    throw Error("degradation '" + label +
+                "': radius must be a positive number, at most 10 (a share of the bounding-box "
+                "diagonal), got " + format_option_value(d.radius));
 }
 
 }  // namespace

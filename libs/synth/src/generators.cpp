@@ -143,8 +143,15 @@ TriangleMesh make_prism(const Vec3& base, double radius, double height, int side
   return m;
 }
 
+double default_edge_length(const std::string& scene) {
+  if (scene == "building") return 0.3;
+  if (scene == "fortress") return 0.6;
+  if (scene == "city") return 0.8;
+  return 0.0;
+}
+
 TriangleMesh make_building(const GeneratorOptions& o) {
-  const double e = o.edge_length > 0 ? o.edge_length : 0.3;
+  const double e = o.edge_length > 0 ? o.edge_length : default_edge_length("building");
   std::mt19937_64 rng(o.seed);
   std::uniform_real_distribution<double> jitter(-1.0, 1.0);
   const double W = 12.0 + 2.0 * jitter(rng), D = 8.0 + 1.5 * jitter(rng), H = 9.0 + 2.0 * jitter(rng);
@@ -168,7 +175,7 @@ TriangleMesh make_building(const GeneratorOptions& o) {
 }
 
 TriangleMesh make_fortress(const GeneratorOptions& o) {
-  const double e = o.edge_length > 0 ? o.edge_length : 0.6;
+  const double e = o.edge_length > 0 ? o.edge_length : default_edge_length("fortress");
   std::mt19937_64 rng(o.seed);
   std::uniform_real_distribution<double> jitter(-1.0, 1.0);
   const double S = 30.0 + 4.0 * jitter(rng);  // court side
@@ -189,7 +196,7 @@ TriangleMesh make_fortress(const GeneratorOptions& o) {
 }
 
 TriangleMesh make_city(const GeneratorOptions& o) {
-  const double e = o.edge_length > 0 ? o.edge_length : 0.8;
+  const double e = o.edge_length > 0 ? o.edge_length : default_edge_length("city");
   std::mt19937_64 rng(o.seed);
   std::uniform_real_distribution<double> height(6.0, 30.0), unit(0.0, 1.0);
   const int grid = 4;

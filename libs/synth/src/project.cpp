@@ -26,8 +26,41 @@ void SynthOptions::check() const {
   } else if (scene != "building" && scene != "fortress" && scene != "city") {
     throw Error("unknown scene '" + scene + "' (expected building, fortress, city or object)");
   }
-  if (cameras.count < 2) throw Error("need at least 2 views");
-  if (render.samples_per_pixel < 1) throw Error("samples per pixel must be >= 1");
+  check_option(cameras.count >= 2 && cameras.count <= 1000, "views", "in [2, 1000]", cameras.count);
+  check_option(cameras.width >= 16 && cameras.width <= 8192, "image width", "in [16, 8192] pixels",
+               cameras.width);
+  check_option(cameras.height >= 16 && cameras.height <= 8192, "image height",
+               "in [16, 8192] pixels", cameras.height);
+  check_option(cameras.horizontal_fov_degrees > 1 && cameras.horizontal_fov_degrees < 170,
+               "horizontal field of view", "in (1, 170) degrees", cameras.horizontal_fov_degrees);
+  check_option(cameras.fill > 0 && cameras.fill <= 1, "camera fill", "in (0, 1]", cameras.fill);
+  check_option(cameras.elevation_degrees >= -89 && cameras.elevation_degrees <= 89,
+               "camera elevation", "in [-89, 89] degrees", cameras.elevation_degrees);
+  check_option(render.samples_per_pixel >= 1 && render.samples_per_pixel <= 64, "samples per pixel",
+               "in [1, 64]", render.samples_per_pixel);
+  check_option(render.ambient >= 0 && render.ambient <= 1, "render ambient", "in [0, 1]",
+               render.ambient);
+  check_option(render.diffuse >= 0 && render.diffuse <= 1, "render diffuse", "in [0, 1]",
+               render.diffuse);
+  if (!render.light_direction.allFinite() || !(render.light_direction.norm() > 0))
+    throw Error("render light direction must be a finite, non-zero vector");
+  if (!render.background.allFinite()) throw Error("render background must be a finite colour");
+  // Finer triangles than a quarter of the default would multiply the face
+  // count (and memory, render and distance times) by more than 16.
+  const double d = default_edge_length(scene);
+  if (d > 0) {
+    const std::string range = "0 (the scene's default, " + format_option_value(d) + ") or in [" +
+                              format_option_value(d / 4) + ", 100] metres for '" + scene + "'";
+    check_option(generator.edge_length == 0 ||
+                     (generator.edge_length >= d / 4 && generator.edge_length <= 100),
+                 "edge length", range, generator.edge_length);
+  } else {
+    check_option(generator.edge_length >= 0 && generator.edge_length <= 100,
+                 "edge length (unused by '" + scene + "')", "0 or in (0, 100] metres",
+                 generator.edge_length);
+  }
+  check_option(degradations.size() <= 64, "the number of degradations", "at most 64",
+               double(degradations.size()));
 }
 
 namespace {
@@ -123,6 +156,8 @@ SynthProject make_synthetic_project(const SynthOptions& options) {
   g.seed = o.seed;
   p.truth = o.scene == "object" ? load_object(o.mesh_file) : make_scene_mesh(o.scene, g);
   DegradeResult degraded = degrade(p.truth, o.degradations, o.seed);
+  if (degraded.mesh.empty())
+    throw Error("the degradations removed every face of the scene (a hole or decimation too large)");
   p.region_centers = degraded.region_centers;
   p.scene.mesh = std::move(degraded.mesh);
   p.scene.mesh.face_attributes.erase(kMaterialAttribute);
@@ -146,6 +181,8 @@ SynthProject make_synthetic_project(const SynthOptions& options) {
 
 SynthProject write_synthetic_project(const SynthOptions& options, const std::string& folder,
                                      const ProgressCallback& progress) {
+  options.check();
+  io::check_can_write_folder(folder);
   std::error_code ec;
   if (fs::exists(folder, ec) && !fs::is_empty(folder, ec) && !options.overwrite)
     throw Error("output folder is not empty; pass --overwrite to write into it", folder);

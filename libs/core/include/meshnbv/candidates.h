@@ -38,6 +38,10 @@ struct SamplingOptions {
   int directions = 512;                               // Fibonacci spiral on the hemisphere
   std::vector<double> distance_factors = {0.75, 1.0, 1.5};  // times the median viewing distance
   std::uint64_t seed = 1;                             // rotates the spiral
+
+  // Throws Error for values out of range: directions in [1, 65536], 1 to 16
+  // distance factors, each in (0, 100].
+  void check() const;
 };
 
 struct CandidateSet {
@@ -70,6 +74,10 @@ struct RefineOptions {
   int iterations = 150;          // Nelder-Mead iterations
   double position_step = 0.1;    // initial simplex, times the distance to the region
   double angle_step = 5.0;       // initial simplex, degrees
+
+  // Throws Error for values out of range: iterations in [0, 10000],
+  // position_step in (0, 10], angle_step in (0, 90].
+  void check() const;
 };
 
 // Nelder-Mead over position (3) and viewing direction (2); unsafe poses are

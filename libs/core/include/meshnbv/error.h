@@ -30,6 +30,13 @@ class Error : public std::runtime_error {
   std::string element_;
 };
 
+// Option checks (the check() of every options struct): throws
+// Error("<name> must be <range>, got <value>") unless `ok`, e.g.
+// "samples_per_side must be 0 (automatic) or in [2, 64], got 1000".
+// `value` is printed in the shortest form that reads back (nan, inf, 1e+308).
+void check_option(bool ok, const std::string& name, const std::string& range, double value);
+std::string format_option_value(double value);
+
 // Thrown when a progress callback asked to stop.
 class Cancelled : public Error {
  public:

@@ -16,6 +16,8 @@ namespace meshnbv {
 struct VisibilityOptions {
   double relative_eps = 1e-4;           // the segment stops at (1 - eps) |v - C| ...
   double absolute_eps_of_diagonal = 1e-6;  // ... minus this share of the bbox diagonal
+
+  void check() const;  // throws Error for values out of range: both in [0, 1)
 };
 
 class VertexVisibility {

@@ -20,8 +20,17 @@ std::string extension_lower(const std::string& path);
 void write_atomically(const std::string& path, const std::function<void(std::ostream&)>& write,
                       bool overwrite = true, bool binary = false);
 
-// Throws Error if path exists and overwrite is false.
+// Checks, before anything is computed, that `path` can be written as a
+// file: it is not a folder, it does not exist unless `overwrite`, and its
+// folder is a writable folder or can be created (the nearest existing
+// ancestor is a folder that a file can be created in; tried with a probe
+// file, so that read-only mounts and root's view of /proc count too).
+// Throws Error naming the output and the reason otherwise.
 void check_can_write(const std::string& path, bool overwrite);
+// The same for an output folder: `path` is a folder that a file can be
+// created in, or can be created. Whether its contents may be replaced is
+// the caller's business.
+void check_can_write_folder(const std::string& path);
 
 // `path` relative to folder `base` when possible (lexically), else absolute.
 std::string relative_to(const std::string& path, const std::string& base);

@@ -11,6 +11,15 @@
 namespace meshnbv::io {
 
 TriangleMesh read_ply(const std::string& path);
+// What a PLY file stores its vertex coordinates as: the coarsest type of x,
+// y and z (Integer < Float32 < Float64), so how far a coordinate read back
+// may be from the value that was written.
+enum class PlyCoordinateType { Integer, Float32, Float64 };
+struct PlyFileInfo {
+  PlyCoordinateType coordinates = PlyCoordinateType::Float32;
+};
+// (A name of its own: an overload of read_ply could not be passed as a template argument.)
+TriangleMesh read_ply_with_info(const std::string& path, PlyFileInfo* info);
 TriangleMesh read_obj(const std::string& path);
 TriangleMesh read_off(const std::string& path);
 // By extension (.ply, .obj, .off); throws Error for anything else.
@@ -18,7 +27,11 @@ TriangleMesh read_mesh(const std::string& path);
 
 struct PlyWriteOptions {
   bool binary = true;             // binary little endian, else ASCII
-  bool double_precision = false;  // vertex coordinates as double
+  // Vertex coordinates as double. When false, they are still written as
+  // double if rounding to float would move a vertex by more than 1e-6 of
+  // the bounding-box diagonal (a mesh far from the origin, georeferenced)
+  // or a coordinate is beyond float's range.
+  bool double_precision = false;
   bool overwrite = true;          // false: throw if the file exists
   std::string comment = "written by MeshNBV";
 };

@@ -33,6 +33,11 @@ struct SceneWriteOptions {
   bool overwrite = false;
 };
 
+// The format write_scene writes to `path`: `format` unless Auto, else
+// from the name (*.mlp, *.json, no extension = a COLMAP folder). Throws
+// Error for a name it cannot tell.
+SceneFormat scene_output_format(const std::string& path, SceneFormat format = SceneFormat::Auto);
+
 // .mlp and .json write the mesh beside them as <stem>_mesh.ply when the
 // scene has one; a COLMAP folder gets cameras.txt, images.txt, points3D.txt
 // (and meshed.ply). Middlebury and Bundler are read-only.

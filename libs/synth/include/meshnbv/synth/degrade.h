@@ -19,8 +19,8 @@ struct Degradation {
   // Decimate: fraction of faces removed (0.9 keeps 10%).
   double strength = 0.01;
   // Region (all but Decimate): a ball around `center` of `radius` (fraction
-  // of the diagonal). When `center` is not finite, a surface point is drawn
-  // from the seed.
+  // of the diagonal, in (0, 10]). When `center` is not finite, a surface
+  // point is drawn from the seed. Strength: at most 1 (Noise, Dent, Bump).
   Vec3 center = Vec3::Constant(std::numeric_limits<double>::quiet_NaN());
   double radius = 0.15;
 };

@@ -28,6 +28,9 @@ TriangleMesh make_building(const GeneratorOptions& options = {});
 TriangleMesh make_fortress(const GeneratorOptions& options = {});
 // A grid of blocks of different heights on a ground plane.
 TriangleMesh make_city(const GeneratorOptions& options = {});
+// The edge length a scene uses when GeneratorOptions::edge_length is 0
+// (building 0.3, fortress 0.6, city 0.8 metres); 0 for other names.
+double default_edge_length(const std::string& scene);
 // "building", "fortress", "city"; throws Error otherwise.
 TriangleMesh make_scene_mesh(const std::string& name, const GeneratorOptions& options = {});
 

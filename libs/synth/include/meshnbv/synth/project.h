@@ -25,7 +25,11 @@ struct SynthOptions {
   bool write_depth = false;  // also images/<label>_depth.tiff (32-bit float)
   bool overwrite = false;
 
-  // Throws Error for inconsistent options (object without a mesh, ...).
+  // Throws Error for inconsistent options (object without a mesh, ...) and
+  // values out of range: views in [2, 1000], image sides in [16, 8192]
+  // pixels, samples per pixel in [1, 64], edge length 0 (the scene's
+  // default d) or in [d / 4, 100] metres (at most 16 times the default
+  // face count), at most 64 degradations, each within its own range.
   void check() const;
 };
 

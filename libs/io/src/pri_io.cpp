@@ -1,0 +1,79 @@
+// Reading a PRI back for a scene's own mesh (`meshnbv suggest --pri`).
+#include "meshnbv/io/pri_io.h"
+
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+#include "meshnbv/error.h"
+#include "meshnbv/io/file_util.h"
+#include "meshnbv/io/mesh_io.h"
+
+namespace meshnbv::io {
+
+namespace {
+
+// How far a coordinate stored as `type` may be from `x`: one step of the
+// type's grid at x (a correctly rounded write is within half of it).
+double storage_step(double x, PlyCoordinateType type) {
+  const double a = std::abs(x);
+  switch (type) {
+    case PlyCoordinateType::Float32: {
+      const float f = static_cast<float>(a);
+      if (!std::isfinite(f)) return std::numeric_limits<double>::infinity();
+      return double(std::nextafter(f, std::numeric_limits<float>::infinity())) - double(f);
+    }
+    case PlyCoordinateType::Float64:
+      return std::nextafter(a, std::numeric_limits<double>::infinity()) - a;
+    case PlyCoordinateType::Integer: return 1.0;
+  }
+  return 0.0;
+}
+
+std::string point_text(const Vec3& p) {
+  std::ostringstream ss;
+  ss.precision(17);
+  ss << "(" << p.x() << ", " << p.y() << ", " << p.z() << ")";
+  return ss.str();
+}
+
+}  // namespace
+
+std::vector<float> read_pri_for_mesh(const std::string& path, const TriangleMesh& mesh) {
+  PlyFileInfo info;
+  if (extension_lower(path) != ".ply")
+    throw Error("the PRI mesh must be a PLY file (written by meshnbv pri)", path);
+  const TriangleMesh file = read_ply_with_info(path, &info);
+  const std::vector<float>* q = file.face_attribute("quality");
+  if (!q) throw Error("no per-face 'quality' in the PRI mesh (write it with meshnbv pri)", path);
+  const std::string different =
+      "; the PRI was computed on a different mesh than the scene's (pass the mesh it was "
+      "computed on with --mesh, or compute it again)";
+  if (file.num_faces() != mesh.num_faces() || file.num_vertices() != mesh.num_vertices())
+    throw Error("the PRI mesh has " + std::to_string(file.num_vertices()) + " vertices and " +
+                    std::to_string(file.num_faces()) + " faces, the scene's mesh " +
+                    std::to_string(mesh.num_vertices()) + " and " +
+                    std::to_string(mesh.num_faces()) + different,
+                path);
+  for (std::size_t f = 0; f < mesh.num_faces(); ++f)
+    if (file.faces[f] != mesh.faces[f])
+      throw Error("face " + std::to_string(f) + " has other vertices in the PRI mesh than in the "
+                  "scene's" + different,
+                  path);
+  const char* precision = info.coordinates == PlyCoordinateType::Float64   ? "double"
+                          : info.coordinates == PlyCoordinateType::Float32 ? "float"
+                                                                           : "integer";
+  for (std::size_t v = 0; v < mesh.num_vertices(); ++v) {
+    const Vec3& a = mesh.vertices[v];
+    const Vec3& b = file.vertices[v];
+    for (int k = 0; k < 3; ++k)
+      if (!(std::abs(a[k] - b[k]) <= storage_step(a[k], info.coordinates)))
+        throw Error("vertex " + std::to_string(v) + " is at " + point_text(b) +
+                        " in the PRI mesh and at " + point_text(a) + " in the scene's, further "
+                        "apart than the file's " + precision + " precision" + different,
+                    path);
+  }
+  return *q;
+}
+
+}  // namespace meshnbv::io
