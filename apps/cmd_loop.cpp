@@ -14,6 +14,7 @@
 #include "meshnbv/eval/loop.h"
 #include "meshnbv/io/file_util.h"
 #include "meshnbv/io/mesh_io.h"
+#include "meshnbv/options.h"
 #include "progress_bar.h"
 
 namespace fs = std::filesystem;
@@ -53,8 +54,8 @@ std::string join_metrics(const eval::EvaluationResult& m) {
 
 void add_loop_command(CLI::App& app) {
   struct Args {
-    std::string dataset, out, cache, strategy = "nbv", mode = "given",
-                                     weights = "0.6,1.6,2.1,0.6", measure = "ssd";
+    std::string dataset, out, cache, strategy = "nbv", mode = "given";
+    OptionFlags flags;
     std::string bootstrap_views, thresholds, percentiles = "80,90,99", mesher = "delaunay",
                                              labelling = "graphcut", facet_support = "any";
     eval::LoopOptions options;
@@ -79,31 +80,21 @@ void add_loop_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--bootstrap-views", a->bootstrap_views,
                   "Their indices, comma-separated (default: view 0 and its nearest neighbours)");
-  cmd->add_option("--max-views", a->options.max_views, "Stop at this many views (0 = all)")
+  cmd->add_option("--view-budget", a->options.max_views,
+                  "Stop when the reconstruction has this many views (0 = all)")
       ->capture_default_str();
   cmd->add_option("--cache", a->cache,
                   "Folder for COLMAP's features and matches and the reference, shared by runs on "
                   "the same dataset (default: <out>/cache)");
-  add_suggest_options(cmd, &a->options.suggest, &a->mode, &a->weights);
-  // The PRI options of add_pri_options, except its --max-views alias: here
-  // --max-views is the loop's own (the name for it).
-  cmd->add_option("--measure", a->measure, "nbv: photo-consistency measure of the PRI")
-      ->check(CLI::IsMember({"ssd", "ncc"}))
+  cmd->add_option("--nbv-candidates", a->mode,
+                  "nbv: where the next view comes from: given (the dataset's views), sampled "
+                  "or refined (new poses, rendered; synthetic datasets only)")
+      ->check(CLI::IsMember({"given", "sampled", "refined"}))
       ->capture_default_str();
-  cmd->add_option("--samples-per-side", a->options.pri.samples_per_side,
-                  "nbv: PRI lattice subdivisions per face side (0 = automatic)")
-      ->capture_default_str();
-  cmd->add_option("--max-views-per-face", a->options.pri.max_views_per_face,
-                  "nbv: views compared per face (0 = all)")
-      ->capture_default_str();
-  cmd->add_option("--max-incidence-angle", a->options.pri.max_incidence_angle,
-                  "nbv: views seeing a face at a larger angle (degrees) are ignored by the PRI")
-      ->capture_default_str();
-  cmd->add_option("--edge-margin", a->options.pri.edge_margin,
-                  "nbv: the PRI's lattice stays this many pixels inside each face (0 = whole face)")
-      ->capture_default_str();
-  cmd->add_option("--threads", a->options.pri.threads, "Worker threads (0 = all cores)")
-      ->capture_default_str();
+  // nbv: every PRI and suggestion option under its one name (options.h);
+  // the suggestion's `candidates` is the loop's --nbv-candidates.
+  add_pri_options(cmd, &a->flags, &a->options.pri);
+  a->flags.add(cmd, suggest_option_table(), &a->options.suggest, {"candidates"});
   cmd->add_option("--coverage-min-views", a->options.coverage_min_views,
                   "coverage: faces seen by fewer selected views count as uncovered")
       ->capture_default_str();
@@ -144,10 +135,11 @@ void add_loop_command(CLI::App& app) {
   cmd->add_option("--sift-peak-threshold", a->options.colmap.peak_threshold,
                   "COLMAP SIFT peak threshold (lower = more features)")
       ->capture_default_str();
-  cmd->add_option("--guided-matching", a->options.colmap.guided_matching,
-                  "COLMAP matching guided by the verified epipolar geometry (1/0)")
+  cmd->add_flag("--guided-matching,!--no-guided-matching", a->options.colmap.guided_matching,
+                "COLMAP matching guided by the verified epipolar geometry")
+      ->default_str("true");
+  cmd->add_option("--colmap-binary", a->options.colmap.executable, "COLMAP executable")
       ->capture_default_str();
-  cmd->add_option("--colmap", a->options.colmap.executable, "COLMAP executable")->capture_default_str();
   cmd->add_option("--thresholds", a->thresholds,
                   "Completeness thresholds in scene units (default: 0.00075,0.00125,0.00175 for "
                   "real data; 0.5%,1%,2% of the truth's diagonal for synthetic scenes)");
@@ -167,9 +159,8 @@ void add_loop_command(CLI::App& app) {
   cmd->callback([a]() {
     eval::LoopOptions& o = a->options;
     o.strategy = eval::parse_strategy(a->strategy);
+    a->flags.apply();
     o.nbv_candidates = parse_candidate_mode(a->mode);
-    o.pri.measure = parse_measure(a->measure);
-    o.suggest.energy.weights = parse_weights(a->weights);
     o.suggest.threads = o.pri.threads;
     o.seed = o.suggest.sampling.seed;
     o.mesher = eval::parse_mesher(a->mesher);

@@ -24,24 +24,24 @@ void add_run_command(CLI::App& app) {
     SceneInput input;
     PriOptions pri;
     SuggestOptions suggest;
-    std::string measure = "ssd", mode = "sampled", weights = "0.6,1.6,2.1,0.6", out;
-    bool overwrite = false, quiet = false, json = false;
+    OptionFlags flags;
+    ProgressChoice progress;
+    std::string out;
+    bool overwrite = false;
   };
   auto a = std::make_shared<Args>();
-  a->suggest.top = 3;
   CLI::App* cmd = app.add_subcommand(
       "run", "The main job: PRI, next-view suggestions and a visual report (report.html) in one folder");
   a->input.add_to(cmd);
-  add_pri_options(cmd, &a->pri, &a->measure);
-  add_suggest_options(cmd, &a->suggest, &a->mode, &a->weights);
+  add_pri_options(cmd, &a->flags, &a->pri);
+  add_suggest_options(cmd, &a->flags, &a->suggest);
   cmd->add_option("--out", a->out, "Output folder")->required();
   cmd->add_flag("--overwrite", a->overwrite, "Write into a folder that already holds results");
-  cmd->add_flag("--quiet", a->quiet, "No progress output");
-  cmd->add_flag("--json", a->json, "Progress as JSON lines on stderr");
+  a->progress.add_to(cmd);
   cmd->callback([a]() {
     using clock = std::chrono::steady_clock;
     SuggestOptions& so = a->suggest;
-    finish_options(&a->pri, a->measure, &so, a->mode, a->weights);
+    finish_options(a->flags, &a->pri, &so);
     const fs::path out(a->out);
     io::check_can_write_folder(a->out);
     const fs::path report = out / "report.html";
@@ -57,7 +57,7 @@ void add_run_command(CLI::App& app) {
     };
     const Scene scene = a->input.read();
     lap("read scene");
-    ProgressBar bar(a->quiet, a->json);
+    ProgressBar bar(a->progress.silent(), a->progress.json());
     const PriResult pri = compute_pri(scene, a->pri, bar.callback());
     lap("PRI");
     const SuggestResult sug = suggest_views(scene, pri.pri, so, {}, bar.callback());
@@ -70,7 +70,7 @@ void add_run_command(CLI::App& app) {
     io::write_atomically((out / "pri.json").string(),
                          [&](std::ostream& o) { o << pri_summary_json(pri, a->pri); });
     io::write_atomically((out / "suggestions.json").string(), [&](std::ostream& o) {
-      o << suggestions_json(sug, so, {a->input.path, "computed (" + a->measure + ")"});
+      o << suggestions_json(sug, so, {a->input.path, "computed (" + measure_name(a->pri.measure) + ")"});
     });
     io::write_suggestions_mlp(scene, sug, (out / "suggestions.mlp").string(), true);
     io::write_ply(frustum_mesh(sug), (out / "frustums.ply").string(), ply);

@@ -9,66 +9,13 @@
 #include "meshnbv/io/mesh_io.h"
 #include "meshnbv/io/pri_io.h"
 #include "meshnbv/io/suggestions_io.h"
+#include "meshnbv/options.h"
 #include "meshnbv/planner.h"
 #include "progress_bar.h"
 
 namespace meshnbv::cli {
-std::array<double, 4> parse_weights(const std::string& text) {
-  std::array<double, 4> w{};
-  std::stringstream ss(text);
-  std::string item;
-  int n = 0;
-  while (std::getline(ss, item, ',')) {
-    if (n == 4) throw Error("--weights takes four numbers m1,m2,m3,m4, got '" + text + "'");
-    try {
-      std::size_t used = 0;
-      w[std::size_t(n)] = std::stod(item, &used);
-      if (used != item.size()) throw std::invalid_argument(item);
-    } catch (const std::exception&) {
-      throw Error("--weights: '" + item + "' is not a number (expected m1,m2,m3,m4)");
-    }
-    ++n;
-  }
-  if (n != 4) throw Error("--weights takes four numbers m1,m2,m3,m4, got '" + text + "'");
-  return w;
-}
-
-void finish_options(PriOptions* pri, const std::string& measure, SuggestOptions* suggest,
-                    const std::string& mode, const std::string& weights) {
-  pri->measure = parse_measure(measure);
-  pri->check();
-  suggest->mode = parse_candidate_mode(mode);
-  suggest->energy.weights = parse_weights(weights);
-  suggest->threads = pri->threads;
-  suggest->check();
-}
-
-void add_suggest_options(CLI::App* cmd, SuggestOptions* o, std::string* mode, std::string* weights) {
-  cmd->add_option("--candidates", *mode,
-                  "given: views without image / marked unused / --candidates-from; sampled: "
-                  "hemisphere around the worst region; refined: sampled, then optimised")
-      ->check(CLI::IsMember({"given", "sampled", "refined"}))
-      ->capture_default_str();
-  cmd->add_option("--top", o->top, "Number of suggestions (greedy batch)")->capture_default_str();
-  cmd->add_option("--worst", o->worst_k, "Faces in the worst set")->capture_default_str();
-  cmd->add_option("--weights", *weights, "Energy weights m1,m2,m3,m4 (occlusion, focus, parallax, incidence)")
-      ->capture_default_str();
-  cmd->add_option("--penalty", o->energy.penalty, "Kp, the penalty value")->capture_default_str();
-  cmd->add_option("--parallax-delta", o->energy.parallax_delta, "B/H threshold")->capture_default_str();
-  cmd->add_option("--incidence-mu", o->energy.incidence_mu, "Preferred incidence angle (degrees)")
-      ->capture_default_str();
-  cmd->add_option("--incidence-sigma", o->energy.incidence_sigma, "Incidence spread (degrees); kappa = 1/sigma^2")
-      ->capture_default_str();
-  cmd->add_option("--directions", o->sampling.directions, "Sampled directions on the hemisphere")
-      ->capture_default_str();
-  cmd->add_option("--safety-distance", o->safety_distance,
-                  "Minimum distance to the surface, as a share of the bounding-box diagonal")
-      ->capture_default_str();
-  cmd->add_option("--refine-best", o->refine_best, "Refined mode: candidates refined per pick")
-      ->capture_default_str();
-  cmd->add_option("--refine-iterations", o->refine.iterations, "Refined mode: optimiser iterations")
-      ->capture_default_str();
-  cmd->add_option("--seed", o->sampling.seed, "Seed of the sampling")->capture_default_str();
+void add_suggest_options(CLI::App* cmd, OptionFlags* flags, SuggestOptions* options) {
+  flags->add(cmd, suggest_option_table(), options);
 }
 
 void add_suggest_command(CLI::App& app) {
@@ -76,9 +23,10 @@ void add_suggest_command(CLI::App& app) {
     SceneInput input;
     PriOptions pri;
     SuggestOptions suggest;
-    std::string measure = "ssd", mode = "sampled", weights = "0.6,1.6,2.1,0.6";
+    OptionFlags flags;
+    ProgressChoice progress;
     std::string pri_file, candidates_from, out, mlp, frustums, colmap;
-    bool overwrite = false, quiet = false;
+    bool overwrite = false;
   };
   auto a = std::make_shared<Args>();
   CLI::App* cmd = app.add_subcommand(
@@ -87,19 +35,19 @@ void add_suggest_command(CLI::App& app) {
   a->input.add_to(cmd);
   cmd->add_option("--pri", a->pri_file, "Mesh with per-face quality = PRI (from meshnbv pri); "
                                         "otherwise PRI is computed");
-  add_pri_options(cmd, &a->pri, &a->measure);
-  add_suggest_options(cmd, &a->suggest, &a->mode, &a->weights);
+  add_pri_options(cmd, &a->flags, &a->pri);
+  add_suggest_options(cmd, &a->flags, &a->suggest);
   cmd->add_option("--candidates-from", a->candidates_from,
                   "Scene whose views are the candidates (given mode)");
   cmd->add_option("--out", a->out, "Suggestions as JSON")->required();
   cmd->add_option("--mlp", a->mlp, "The scene as a MeshLab project with one raster per suggestion");
   cmd->add_option("--frustums", a->frustums, "Frustum mesh of the suggestions (PLY, coloured by rank)");
-  cmd->add_option("--colmap", a->colmap, "Folder for a COLMAP text model of the suggestions");
+  cmd->add_option("--colmap-model", a->colmap, "Folder for a COLMAP text model of the suggestions");
   cmd->add_flag("--overwrite", a->overwrite, "Replace existing output files");
-  cmd->add_flag("--quiet", a->quiet, "No progress output");
+  a->progress.add_to(cmd);
   cmd->callback([a]() {
     SuggestOptions& o = a->suggest;
-    finish_options(&a->pri, a->measure, &o, a->mode, a->weights);
+    finish_options(a->flags, &a->pri, &o);
     if (!a->candidates_from.empty() && o.mode != CandidateMode::Given)
       throw Error("--candidates-from needs --candidates given");
     for (const std::string* p : {&a->out, &a->mlp, &a->frustums})
@@ -108,7 +56,7 @@ void add_suggest_command(CLI::App& app) {
     Scene scene = a->input.read();
     std::vector<View> given;  // read before the PRI is computed: a bad file fails early
     if (!a->candidates_from.empty()) given = io::read_scene(a->candidates_from, {}).views;
-    ProgressBar bar(a->quiet);
+    ProgressBar bar(a->progress.silent(), a->progress.json());
     std::vector<float> pri;
     std::string pri_from;
     if (!a->pri_file.empty()) {
@@ -125,7 +73,7 @@ void add_suggest_command(CLI::App& app) {
       pri_from = a->pri_file;
     } else {
       pri = compute_pri(scene, a->pri, bar.callback()).pri;
-      pri_from = "computed (" + a->measure + ")";
+      pri_from = "computed (" + measure_name(a->pri.measure) + ")";
     }
     const SuggestResult r = suggest_views(scene, pri, o, given, bar.callback());
     bar.finish();

@@ -5,6 +5,7 @@
 #include "meshnbv/io/scene_io.h"
 #include "meshnbv/planner.h"
 #include "meshnbv/pri.h"
+#include "option_flags.h"
 
 namespace meshnbv::cli {
 
@@ -31,15 +32,21 @@ void add_pri_command(CLI::App& app);
 void add_suggest_command(CLI::App& app);
 void add_run_command(CLI::App& app);
 void add_loop_command(CLI::App& app);
-// The next-view options as flags, shared by suggest and run.
-void add_suggest_options(CLI::App* cmd, SuggestOptions* options, std::string* mode, std::string* weights);
-// "m1,m2,m3,m4" -> four numbers; throws Error otherwise.
-std::array<double, 4> parse_weights(const std::string& text);
-// Applies the options given as text (measure, candidate mode, weights),
-// shares the thread count, and checks both option sets.
-void finish_options(PriOptions* pri, const std::string& measure, SuggestOptions* suggest,
-                    const std::string& mode, const std::string& weights);
-// The PRI options as flags, shared by every command that computes PRI.
-void add_pri_options(CLI::App* cmd, PriOptions* options, std::string* measure);
+void add_options_command(CLI::App& app);
+// The PRI and next-view options as flags, derived from the core's option
+// tables (options.h) through `flags`; after parsing, finish_options()
+// applies them (one --threads sets both) and checks both structs.
+void add_pri_options(CLI::App* cmd, OptionFlags* flags, PriOptions* options);
+void add_suggest_options(CLI::App* cmd, OptionFlags* flags, SuggestOptions* options);
+void finish_options(const OptionFlags& flags, PriOptions* pri, SuggestOptions* suggest = nullptr);
+// --progress bar|json|none (bar by default; --quiet = none), shared by the
+// commands that run long.
+struct ProgressChoice {
+  std::string mode = "bar";
+  bool quiet = false;
+  void add_to(CLI::App* cmd);
+  bool silent() const { return quiet || mode == "none"; }
+  bool json() const { return !quiet && mode == "json"; }
+};
 
 }  // namespace meshnbv::cli

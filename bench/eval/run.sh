@@ -56,7 +56,7 @@ if [ "$ONLY" = all ] || [ "$ONLY" = temple ]; then
     # 47 views on a ring; bootstrap: view 0 and its two neighbours; up to 23
     # views as in the paper. Reference: the reconstruction from all 47.
     # Thresholds: Middlebury's 0.75, 1.25, 1.75 mm, and 5 mm (sparse meshes).
-    strategies temple "$TEMPLE" --max-views 23 --cache "$WORK/cache/temple" \
+    strategies temple "$TEMPLE" --view-budget 23 --cache "$WORK/cache/temple" \
       --thresholds 0.00075,0.00125,0.00175,0.005
   else
     echo "SKIP temple: $TEMPLE not found (set MESHNBV_SHARED_DATA)"
@@ -72,11 +72,11 @@ for scene in building fortress; do
   fi
   # Facades seen from different sides must not be joined through the
   # inside (docs/evaluation.md): --facet-support edges.
-  COMMON=(--max-views 12 --cache "$WORK/cache/$scene" --facet-support edges)
+  COMMON=(--view-budget 12 --cache "$WORK/cache/$scene" --facet-support edges)
   strategies "$scene" "$DATA" "${COMMON[@]}"
   # Continuous: new poses anywhere, the renderer takes the picture.
-  run "$scene" nbv_sampled "$DATA" --strategy nbv --candidates sampled "${COMMON[@]}"
-  run "$scene" nbv_refined "$DATA" --strategy nbv --candidates refined --refine-iterations 60 "${COMMON[@]}"
+  run "$scene" nbv_sampled "$DATA" --strategy nbv --nbv-candidates sampled "${COMMON[@]}"
+  run "$scene" nbv_refined "$DATA" --strategy nbv --nbv-candidates refined --refine-iterations 60 "${COMMON[@]}"
 done
 
 /usr/bin/python3 "$ROOT/bench/eval/report.py" "$RESULTS"

@@ -38,7 +38,7 @@ fi
 "$MESHNBV" synth building --out "$TMP/synth" --views 12 --size 640x480 --samples-per-pixel 1 --quiet >/dev/null \
   || fail "synth"
 for s in nbv uniform random coverage; do
-  "$MESHNBV" loop "$TMP/synth" --strategy $s --max-views 5 --out "$TMP/$s" --cache "$TMP/cache" \
+  "$MESHNBV" loop "$TMP/synth" --strategy $s --view-budget 5 --out "$TMP/$s" --cache "$TMP/cache" \
     --quiet >"$TMP/$s.txt" 2>&1 || { fail "loop $s: $(tail -3 "$TMP/$s.txt")"; continue; }
   grep -q "^step 2: 5 views" "$TMP/$s.txt" || fail "loop $s printed its steps: $(cat "$TMP/$s.txt")"
   for f in steps.csv loop.json reference.ply meshes/step_00_views_03.ply meshes/step_02_views_05.ply; do
@@ -67,8 +67,8 @@ PY
 done
 # The cache is shared: features and matches were computed once.
 [ "$(grep -c '^\$ .*feature_extractor' "$TMP/cache/colmap/colmap.log")" -eq 1 ] || fail "features computed once"
-expect_error "--overwrite" "$MESHNBV" loop "$TMP/synth" --strategy uniform --max-views 5 --out "$TMP/uniform" --cache "$TMP/cache"
-expect_error "below the bootstrap" "$MESHNBV" loop "$TMP/synth" --max-views 2 --out "$TMP/x" --cache "$TMP/cache"
+expect_error "--overwrite" "$MESHNBV" loop "$TMP/synth" --strategy uniform --view-budget 5 --out "$TMP/uniform" --cache "$TMP/cache"
+expect_error "below the bootstrap" "$MESHNBV" loop "$TMP/synth" --view-budget 2 --out "$TMP/x" --cache "$TMP/cache"
 expect_error "needs a synthetic dataset" "$MESHNBV" loop "$ROOT/sample_projects/building/project.mlp" \
-  --candidates sampled --out "$TMP/y" --cache "$TMP/cache_box"
+  --nbv-candidates sampled --out "$TMP/y" --cache "$TMP/cache_box"
 finish

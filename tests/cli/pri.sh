@@ -20,7 +20,7 @@ assert s["options"]["measure"] == "ssd" and s["options"]["max_views_per_face"] =
 assert s["seconds"] > 0 and s["views_used"] == 12
 PY
 # NCC, limited views, two threads: same faces observed or fewer.
-"$MESHNBV" pri "$S" --measure ncc --max-views 4 --threads 2 --out "$TMP/ncc.ply" --json "$TMP/ncc.json" --quiet >/dev/null || fail "ncc"
+"$MESHNBV" pri "$S" --measure ncc --max-views-per-face 4 --threads 2 --out "$TMP/ncc.ply" --json "$TMP/ncc.json" --quiet >/dev/null || fail "ncc"
 /usr/bin/python3 -c "import json,sys; s=json.load(open('$TMP/ncc.json')); assert s['options']['measure']=='ncc' and s['options']['max_views_per_face']==4; assert all(w['views']<=4 for w in s['worst_faces'])" || fail "ncc json"
 expect_error "--overwrite" "$MESHNBV" pri "$S" --out "$TMP/pri.ply" --quiet
 "$MESHNBV" convert "$S" "$TMP/noimg.json" >/dev/null

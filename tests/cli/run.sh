@@ -9,7 +9,7 @@ done
 grep -q "report: $TMP/r/report.html" "$TMP/out.txt" || fail "report path printed"
 [ ! -s "$TMP/err.txt" ] || fail "--quiet printed progress: $(head -2 "$TMP/err.txt")"
 "$MESHNBV" info "$TMP/r/suggestions.mlp" | grep -q "views      8 (6 with image" || fail "mlp with the 2 suggested rasters"
-"$MESHNBV" run "$TMP/p/project.mlp" --out "$TMP/r" --top 2 --json --overwrite >/dev/null 2>"$TMP/json.txt" || fail "run --json"
+"$MESHNBV" run "$TMP/p/project.mlp" --out "$TMP/r" --top 2 --progress json --overwrite >/dev/null 2>"$TMP/json.txt" || fail "run --progress json"
 /usr/bin/python3 - "$TMP/json.txt" <<'PY' || fail "json progress"
 import json, sys
 lines = [l for l in open(sys.argv[1]) if l.strip()]

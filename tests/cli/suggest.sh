@@ -3,7 +3,7 @@ source "$(dirname "$0")/lib.bash"
 S="$ROOT/sample_projects/building/project.mlp"
 "$MESHNBV" pri "$S" --out "$TMP/pri.ply" --quiet >/dev/null || fail "pri"
 out=$("$MESHNBV" suggest "$S" --pri "$TMP/pri.ply" --top 3 --out "$TMP/s.json" --mlp "$TMP/s.mlp" \
-      --frustums "$TMP/f.ply" --colmap "$TMP/colmap" --quiet) || fail "suggest: $out"
+      --frustums "$TMP/f.ply" --colmap-model "$TMP/colmap" --quiet) || fail "suggest: $out"
 grep -q "^nbv_3 " <<<"$out" || fail "three suggestions printed: $out"
 /usr/bin/python3 - "$TMP/s.json" <<'PY' || fail "suggestions json"
 import json, sys
@@ -15,7 +15,7 @@ for k, g in enumerate(s["suggestions"]):
     assert abs(e["total"] - (e["occlusion"] + e["focus"] + e["parallax"] + e["incidence"])) < 1e-6 * max(1, abs(e["total"]))
     assert len(g["camera"]["R"]) == 3 and len(g["centre"]) == 3 and len(g["look_at"]) == 3
     assert set(g["seen_faces"]) <= set(s["regions"][g["region"]]["faces"])
-assert s["options"]["candidates"] == "sampled" and s["options"]["weights"] == [0.6, 1.6, 2.1, 0.6]
+assert s["options"]["candidates"] == "sampled" and [s["options"][k] for k in ("weight_occlusion", "weight_focus", "weight_parallax", "weight_incidence")] == [0.6, 1.6, 2.1, 0.6]
 c = s["candidates"]
 assert c["generated"] == 3 * 512 * 3 and c["evaluated"] + c["rejected_inside"] + c["rejected_too_close"] == c["generated"]
 assert len(s["ranking"]) == 50
@@ -26,10 +26,11 @@ head -c 600 "$TMP/f.ply" | grep -q "element face 18" || fail "frustum mesh: 6 fa
 [ "$(grep -vc '^#' "$TMP/colmap/images.txt")" -ge 3 ] || fail "COLMAP images.txt"
 # Refined mode and options
 "$MESHNBV" suggest "$S" --pri "$TMP/pri.ply" --candidates refined --refine-best 2 --refine-iterations 40 \
-  --worst 5 --weights 1,1,1,1 --seed 3 --out "$TMP/r.json" --quiet >/dev/null || fail "refined"
-/usr/bin/python3 -c "import json; s=json.load(open('$TMP/r.json')); assert s['options']['worst']==5 and s['options']['weights']==[1,1,1,1]; assert len(s['regions'][0]['faces'])==5" || fail "refined json"
-expect_error "not a number" "$MESHNBV" suggest "$S" --pri "$TMP/pri.ply" --weights 1,x,1,1 --out "$TMP/w.json"
-expect_error "four numbers" "$MESHNBV" suggest "$S" --pri "$TMP/pri.ply" --weights 1,1,1 --out "$TMP/w.json"
+  --worst-faces 5 --weight-occlusion 1 --weight-focus 1 --weight-parallax 1 --weight-incidence 1 --seed 3 --out "$TMP/r.json" --quiet >/dev/null || fail "refined"
+/usr/bin/python3 -c "import json; s=json.load(open('$TMP/r.json')); o=s['options']; assert o['worst_faces']==5 and [o['weight_'+t] for t in ('occlusion','focus','parallax','incidence')]==[1,1,1,1]; assert len(s['regions'][0]['faces'])==5" || fail "refined json"
+expect_error "--weight-focus: 'x' is not a number" "$MESHNBV" suggest "$S" --pri "$TMP/pri.ply" --weight-focus x --out "$TMP/w.json"
+expect_error "--top takes a whole number, got 2.5" "$MESHNBV" suggest "$S" --pri "$TMP/pri.ply" --top 2.5 --out "$TMP/w.json"
+expect_error "--candidates must be given, sampled or refined, got 'best'" "$MESHNBV" suggest "$S" --pri "$TMP/pri.ply" --candidates best --out "$TMP/w.json"
 expect_error "no candidate views" "$MESHNBV" suggest "$S" --pri "$TMP/pri.ply" --candidates given --out "$TMP/g.json"
 expect_error "--overwrite" "$MESHNBV" suggest "$S" --pri "$TMP/pri.ply" --out "$TMP/s.json"
 

@@ -41,7 +41,7 @@ unwritable "$F" "$MESHNBV" pri "$NOPE" --out "$TMP/ok.ply" --json "$UNDER/pri.js
 unwritable "$F" "$MESHNBV" suggest "$NOPE" --out "$UNDER/s.json"
 unwritable "$F" "$MESHNBV" suggest "$NOPE" --out "$TMP/s.json" --mlp "$UNDER/s.mlp"
 unwritable "$F" "$MESHNBV" suggest "$NOPE" --out "$TMP/s.json" --frustums "$UNDER/f.ply"
-unwritable "$F" "$MESHNBV" suggest "$NOPE" --out "$TMP/s.json" --colmap "$UNDER/colmap"
+unwritable "$F" "$MESHNBV" suggest "$NOPE" --out "$TMP/s.json" --colmap-model "$UNDER/colmap"
 unwritable "$F" "$MESHNBV" run "$NOPE" --out "$UNDER/run"
 unwritable "$F" "$MESHNBV" loop "$NOPE" --out "$UNDER/loop"
 unwritable "$F" "$MESHNBV" loop "$NOPE" --out "$TMP/loop" --cache "$UNDER/cache"
@@ -59,7 +59,7 @@ E="is a file, expected a folder"
 unwritable "$E" "$MESHNBV" run "$NOPE" --out "$FILE"
 unwritable "$E" "$MESHNBV" loop "$NOPE" --out "$FILE"
 unwritable "$E" "$MESHNBV" synth city --out "$FILE"
-unwritable "$E" "$MESHNBV" suggest "$NOPE" --out "$TMP/s.json" --colmap "$FILE"
+unwritable "$E" "$MESHNBV" suggest "$NOPE" --out "$TMP/s.json" --colmap-model "$FILE"
 unwritable "$E" "$MESHNBV" convert "$NOPE" "$FILE" --out-format colmap
 mkdir -p "$TMP/a_folder"
 unwritable "is a folder, expected a file" "$MESHNBV" pri "$NOPE" --out "$TMP/a_folder" --overwrite
@@ -69,7 +69,7 @@ unwritable "--overwrite" "$MESHNBV" pri "$NOPE" --out "$FILE"
 touch "$TMP/exists.json"
 unwritable "--overwrite" "$MESHNBV" convert "$NOPE" "$TMP/exists.json"
 mkdir -p "$TMP/colmap_out" && touch "$TMP/colmap_out/images.txt"
-unwritable "--overwrite" "$MESHNBV" suggest "$NOPE" --out "$TMP/s.json" --colmap "$TMP/colmap_out"
+unwritable "--overwrite" "$MESHNBV" suggest "$NOPE" --out "$TMP/s.json" --colmap-model "$TMP/colmap_out"
 
 # 3. /proc: no file can be created there, not even by root.
 P="cannot create files in folder '/proc'"
@@ -100,7 +100,7 @@ if [ "$have_ro" = 1 ]; then
   unwritable "$R" ro "$MESHNBV" suggest "$NOPE" --out "$RO/s.json"
   unwritable "$R" ro "$MESHNBV" suggest "$NOPE" --out "$TMP/s.json" --mlp "$RO/s.mlp"
   unwritable "$R" ro "$MESHNBV" suggest "$NOPE" --out "$TMP/s.json" --frustums "$RO/f.ply"
-  unwritable "$R" ro "$MESHNBV" suggest "$NOPE" --out "$TMP/s.json" --colmap "$RO/colmap"
+  unwritable "$R" ro "$MESHNBV" suggest "$NOPE" --out "$TMP/s.json" --colmap-model "$RO/colmap"
   unwritable "$R" ro "$MESHNBV" run "$NOPE" --out "$RO/run"
   unwritable "$R" ro "$MESHNBV" run "$NOPE" --out "$RO"
   unwritable "$R" ro "$MESHNBV" loop "$NOPE" --out "$RO/loop"
@@ -117,7 +117,7 @@ OUT=$TMP/out
 mkdir -p "$OUT"
 expect_error "$F" "$MESHNBV" run "$S" --out "$UNDER/run" --quiet
 expect_error "$F" "$MESHNBV" pri "$S" --out "$OUT/pri.ply" --json "$UNDER/pri.json" --quiet
-expect_error "$F" "$MESHNBV" suggest "$S" --out "$OUT/s.json" --colmap "$UNDER/colmap" --quiet
+expect_error "$F" "$MESHNBV" suggest "$S" --out "$OUT/s.json" --colmap-model "$UNDER/colmap" --quiet
 expect_error "$E" "$MESHNBV" run "$S" --out "$FILE" --quiet
 [ -z "$(ls -A "$OUT")" ] || fail "outputs left behind: $(ls -A "$OUT")"
 [ "$(cat "$FILE")" = "not a folder" ] || fail "the regular file changed"

@@ -87,6 +87,7 @@ TEST(Planner, WorstRegionIsTheDent) {
 TEST(Planner, TopSuggestionSeesTheRegionWithParallax) {
   const Fixture& f = fixture();
   SuggestOptions o;
+  o.top = 1;
   const SuggestResult r = suggest_views(f.project.scene, f.oracle, o);
   ASSERT_EQ(r.suggestions.size(), 1u);
   const Suggestion& s = r.suggestions[0];
@@ -194,6 +195,7 @@ TEST(Planner, RefinedModeCountsItsEnergyEvaluations) {
   const Fixture& f = fixture();
   const Scene& scene = f.project.scene;
   SuggestOptions o;
+  o.top = 1;  // one pick: the tally below follows the first pick's refinements
   o.refine_best = 3;
   o.refine.iterations = 40;
   const SuggestResult sampled = suggest_views(scene, f.oracle, o);
@@ -303,5 +305,5 @@ TEST(Planner, BadInput) {
   MESHNBV_EXPECT_ERROR_CONTAINS(suggest_views(f.project.scene, f.oracle, given), "no candidate views");
   SuggestOptions bad = o;
   bad.worst_k = 0;
-  MESHNBV_EXPECT_ERROR_CONTAINS(suggest_views(f.project.scene, f.oracle, bad), "worst_k");
+  MESHNBV_EXPECT_ERROR_CONTAINS(suggest_views(f.project.scene, f.oracle, bad), "worst_faces must be in [1, 10000], got 0");
 }

@@ -12,4 +12,4 @@ endfunction()
 run(synth building --out "${OUT}" --views 8 --size 320x240 --layout orbit --quiet)
 run(pri "${OUT}/project.mlp" --out "${OUT}/pri_ssd.ply" --quiet)
 run(pri "${OUT}/project.mlp" --out "${OUT}/pri_ncc.ply" --measure ncc --samples-per-side 4
-    --max-views 3 --quiet)
+    --max-views-per-face 3 --quiet)

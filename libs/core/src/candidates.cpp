@@ -6,6 +6,8 @@
 #include <map>
 #include <tuple>
 
+#include "meshnbv/options.h"
+#include "meshnbv/planner.h"
 #include "meshnbv/error.h"
 
 namespace meshnbv {
@@ -81,7 +83,10 @@ PinholeCamera camera_looking(const PinholeCamera& intr, const Vec3& centre, cons
 }
 
 void SamplingOptions::check() const {
-  check_option(directions >= 1 && directions <= 65536, "directions", "in [1, 65536]", directions);
+  // directions and seed: the suggest table's ranges (options.h).
+  SuggestOptions as_suggest;
+  as_suggest.sampling = *this;
+  check_options(as_suggest, suggest_option_table());
   check_option(!distance_factors.empty() && distance_factors.size() <= 16,
                "the number of distance_factors", "in [1, 16]", double(distance_factors.size()));
   for (double f : distance_factors)
@@ -89,8 +94,10 @@ void SamplingOptions::check() const {
 }
 
 void RefineOptions::check() const {
-  check_option(iterations >= 0 && iterations <= 10000, "refine iterations", "in [0, 10000]",
-               iterations);
+  // iterations: the suggest table's range (refine_iterations, options.h).
+  SuggestOptions as_suggest;
+  as_suggest.refine = *this;
+  check_options(as_suggest, suggest_option_table());
   check_option(position_step > 0 && position_step <= 10, "refine position_step", "in (0, 10]",
                position_step);
   check_option(angle_step > 0 && angle_step <= 90, "refine angle_step", "in (0, 90] degrees",

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <map>
 
+#include "meshnbv/options.h"
+#include "meshnbv/planner.h"
 #include "meshnbv/error.h"
 
 namespace meshnbv {
@@ -36,20 +38,11 @@ double log_bessel_i0_scaled(double kappa) {
 }
 
 void EnergyOptions::check() const {
-  static const char* kNames[4] = {"weight m1 (occlusion)", "weight m2 (focus)",
-                                  "weight m3 (parallax)", "weight m4 (incidence)"};
-  for (int k = 0; k < 4; ++k)
-    check_option(weights[std::size_t(k)] >= 0 && weights[std::size_t(k)] <= 1000, kNames[k],
-                 "in [0, 1000]", weights[std::size_t(k)]);
-  check_option(penalty >= -1000 && penalty <= 0, "penalty", "in [-1000, 0]", penalty);
-  check_option(parallax_delta > 0 && parallax_delta <= 10, "parallax_delta", "in (0, 10]",
-               parallax_delta);
-  check_option(incidence_mu >= 0 && incidence_mu <= 90, "incidence_mu", "in [0, 90] degrees",
-               incidence_mu);
-  // kappa = 1 / sigma^2 (radians): 3.3e5 at 0.1 degrees; a sigma near 0
-  // would make it infinite.
-  check_option(incidence_sigma >= 0.1 && incidence_sigma <= 180, "incidence_sigma",
-               "in [0.1, 180] degrees", incidence_sigma);
+  // Every field but visibility is an option of the suggest table: checked
+  // with its ranges, with every other option at its (valid) default.
+  SuggestOptions as_suggest;
+  as_suggest.energy = *this;
+  check_options(as_suggest, suggest_option_table());
   visibility.check();
 }
 

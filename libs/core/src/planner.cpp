@@ -10,6 +10,7 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
+#include "meshnbv/options.h"
 #include "meshnbv/error.h"
 
 namespace meshnbv {
@@ -29,12 +30,8 @@ std::string candidate_mode_name(CandidateMode mode) {
 }
 
 void SuggestOptions::check() const {
-  check_option(worst_k >= 1 && worst_k <= 10000, "worst_k", "in [1, 10000]", worst_k);
-  check_option(top >= 1 && top <= 100, "top", "in [1, 100]", top);
-  check_option(safety_distance >= 0 && safety_distance <= 10, "safety_distance",
-               "in [0, 10] (a share of the bounding-box diagonal)", safety_distance);
-  check_option(refine_best >= 1 && refine_best <= 64, "refine_best", "in [1, 64]", refine_best);
-  check_option(threads >= 0 && threads <= 1024, "threads", "in [0, 1024] (0 = all cores)", threads);
+  // The ranges are the option table's (options.h): one place for every front end.
+  check_options(*this, suggest_option_table());
   energy.check();
   sampling.check();
   refine.check();

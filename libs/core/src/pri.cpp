@@ -11,6 +11,7 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
+#include "meshnbv/options.h"
 #include "meshnbv/error.h"
 #include "meshnbv/raycaster.h"
 
@@ -30,17 +31,8 @@ std::string measure_name(Measure measure) {
 }
 
 void PriOptions::check() const {
-  check_option(samples_per_side == 0 || (samples_per_side >= 2 && samples_per_side <= 64),
-               "samples_per_side", "0 (automatic) or in [2, 64]", samples_per_side);
-  check_option(max_views_per_face == 0 || max_views_per_face >= 2, "max_views_per_face",
-               "0 (all) or >= 2", max_views_per_face);
-  check_option(threads >= 0 && threads <= 1024, "threads", "in [0, 1024] (0 = all cores)", threads);
-  check_option(textureless_variance >= 0 && textureless_variance <= 1, "textureless_variance",
-               "in [0, 1]", textureless_variance);
-  check_option(edge_margin >= 0 && edge_margin <= 16, "edge_margin", "in [0, 16] pixels",
-               edge_margin);
-  check_option(max_incidence_angle > 0 && max_incidence_angle <= 90, "max_incidence_angle",
-               "in (0, 90] degrees", max_incidence_angle);
+  // The ranges are the option table's (options.h): one place for every front end.
+  check_options(*this, pri_option_table());
   visibility.check();
 }
 

@@ -8,6 +8,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "meshnbv/options.h"
+
 using nlohmann::json;
 
 namespace meshnbv {
@@ -60,15 +62,8 @@ std::string pri_summary_json(const PriResult& result, const PriOptions& options,
   json worst = json::array();
   for (const auto& w : s.worst) worst.push_back({{"face", w.face}, {"pri", w.pri}, {"views", w.views}});
   j["worst_faces"] = worst;
-  j["options"] = {{"measure", measure_name(options.measure)},
-                  {"samples_per_side", options.samples_per_side},
-                  {"max_views_per_face", options.max_views_per_face},
-                  {"max_incidence_angle", options.max_incidence_angle},
-                  {"edge_margin", options.edge_margin},
-                  {"check_interior_occlusion", options.check_interior_occlusion},
-                  {"color", options.color},
-                  {"threads", options.threads},
-                  {"textureless_variance", options.textureless_variance}};
+  // Every option of the table, under its one name (options.h).
+  j["options"] = json::parse(options_json(options, pri_option_table()));
   j["views_used"] = result.views_used;
   j["seconds"] = result.seconds;
   return j.dump(2) + "\n";
@@ -81,21 +76,10 @@ std::string suggestions_json(const SuggestResult& r, const SuggestOptions& o,
   j["version"] = 1;
   j["scene"] = ctx.scene;
   j["pri"] = ctx.pri_from;
-  const auto& w = o.energy.weights;
-  j["options"] = {{"candidates", candidate_mode_name(o.mode)},
-                  {"top", o.top},
-                  {"worst", o.worst_k},
-                  {"weights", {w[0], w[1], w[2], w[3]}},
-                  {"penalty", o.energy.penalty},
-                  {"parallax_delta", o.energy.parallax_delta},
-                  {"incidence_mu", o.energy.incidence_mu},
-                  {"incidence_sigma", o.energy.incidence_sigma},
-                  {"directions", o.sampling.directions},
-                  {"distance_factors", o.sampling.distance_factors},
-                  {"safety_distance", o.safety_distance},
-                  {"refine_best", o.refine_best},
-                  {"refine_iterations", o.refine.iterations},
-                  {"seed", o.sampling.seed}};
+  // Every option of the table, under its one name (options.h), and the
+  // sampling distances, which no front end sets.
+  j["options"] = json::parse(options_json(o, suggest_option_table()));
+  j["options"]["distance_factors"] = o.sampling.distance_factors;
   json regions = json::array();
   for (std::size_t i = 0; i < r.regions.size(); ++i)
     regions.push_back({{"index", i}, {"faces", r.regions[i].faces},

@@ -20,6 +20,7 @@
 #include <tbb/parallel_for.h>
 
 #include "meshnbv/error.h"
+#include "meshnbv/options.h"
 #include "meshnbv/io/file_util.h"
 #include "meshnbv/io/mesh_io.h"
 #include "meshnbv/io/scene_io.h"
@@ -483,9 +484,6 @@ LoopResult run_loop(const Dataset& dataset, const LoopOptions& options,
                     {"max_views", max_views},
                     {"seed", options.seed},
                     {"candidates", candidate_mode_name(options.nbv_candidates)},
-                    {"measure", measure_name(options.pri.measure)},
-                    {"worst", options.suggest.worst_k},
-                    {"weights", options.suggest.energy.weights},
                     {"mesher", mesher_name(options.mesher)},
                     {"labelling", labelling_name(options.delaunay.labelling)},
                     {"surface_weight", options.delaunay.surface_weight},
@@ -493,6 +491,10 @@ LoopResult run_loop(const Dataset& dataset, const LoopOptions& options,
                     {"min_point_views", options.delaunay.min_views_per_point},
                     {"max_point_error", options.max_point_error},
                     {"matcher", options.colmap.matcher}};
+    // nbv: the PRI and suggestion options, each table under its one names.
+    j["options"]["pri"] = nlohmann::json::parse(options_json(options.pri, pri_option_table()));
+    j["options"]["suggest"] =
+        nlohmann::json::parse(options_json(options.suggest, suggest_option_table()));
     j["reference"] = result.reference;
     j["thresholds"] = result.thresholds;
     j["percentiles"] = eo.percentiles;

@@ -17,7 +17,7 @@ std::string candidate_mode_name(CandidateMode mode);
 
 struct SuggestOptions {
   int worst_k = 10;          // faces in the worst set
-  int top = 1;               // suggestions to return (greedy batch)
+  int top = 3;               // suggestions to return (greedy batch)
   CandidateMode mode = CandidateMode::Sampled;
   EnergyOptions energy;
   SamplingOptions sampling;
