@@ -17,6 +17,7 @@
 #include "vtkMeshNBVProgress.h"
 
 #include "meshnbv/error.h"
+#include "meshnbv/options.h"
 #include "meshnbv/results.h"
 #include "meshnbv/planner.h"
 
@@ -125,6 +126,47 @@ std::string FieldString(vtkDataObject* object, const char* name)
   return a && a->GetNumberOfValues() > 0 ? a->GetValue(0) : std::string();
 }
 
+// The properties as the core's options, unchecked (PrintSelf shows what is
+// set, in range or not).
+meshnbv::SuggestOptions RawOptionsOf(vtkMeshNBVNextBestViewFilter* f)
+{
+  meshnbv::SuggestOptions o;
+  const int candidates = f->GetCandidates();
+  if (candidates >= 0 && candidates <= 2)
+  {
+    o.mode = ToMode(candidates);
+  }
+  o.top = f->GetTop();
+  o.worst_k = f->GetWorstFaces();
+  o.energy.weights = { f->GetWeightOcclusion(), f->GetWeightFocus(), f->GetWeightParallax(),
+    f->GetWeightIncidence() };
+  o.energy.penalty = f->GetPenalty();
+  o.energy.parallax_delta = f->GetParallaxDelta();
+  o.energy.incidence_mu = f->GetIncidenceMu();
+  o.energy.incidence_sigma = f->GetIncidenceSigma();
+  o.sampling.directions = f->GetDirections();
+  o.sampling.seed = f->GetSeed();
+  o.safety_distance = f->GetSafetyDistance();
+  o.refine_best = f->GetRefineBest();
+  o.refine.iterations = f->GetRefineIterations();
+  o.threads = f->GetThreads();
+  return o;
+}
+
+// Checked: an out-of-range property is an error naming it and its range.
+meshnbv::SuggestOptions OptionsOf(vtkMeshNBVNextBestViewFilter* f)
+{
+  const int candidates = f->GetCandidates();
+  if (candidates < 0 || candidates > 2)
+  {
+    throw meshnbv::Error("Candidates must be 0 (GIVEN), 1 (SAMPLED) or 2 (REFINED), got " +
+      std::to_string(candidates));
+  }
+  meshnbv::SuggestOptions o = RawOptionsOf(f);
+  o.check();
+  return o;
+}
+
 } // namespace
 
 //------------------------------------------------------------------------------
@@ -132,15 +174,16 @@ vtkMeshNBVNextBestViewFilter::vtkMeshNBVNextBestViewFilter()
   : PRIArrayName("PRI")
   , FrustumDepth(0.0)
 {
-  // The defaults are the core's, so that the three front ends agree.
+  // The defaults are the core's option table's (options.h), so that every
+  // front end agrees.
   const meshnbv::SuggestOptions defaults;
   this->Candidates = ToCandidates(defaults.mode);
   this->Top = defaults.top;
-  this->Worst = defaults.worst_k;
-  for (int i = 0; i < 4; ++i)
-  {
-    this->Weights[i] = defaults.energy.weights[static_cast<std::size_t>(i)];
-  }
+  this->WorstFaces = defaults.worst_k;
+  this->WeightOcclusion = defaults.energy.weights[0];
+  this->WeightFocus = defaults.energy.weights[1];
+  this->WeightParallax = defaults.energy.weights[2];
+  this->WeightIncidence = defaults.energy.weights[3];
   this->Penalty = defaults.energy.penalty;
   this->ParallaxDelta = defaults.energy.parallax_delta;
   this->IncidenceMu = defaults.energy.incidence_mu;
@@ -260,25 +303,7 @@ int vtkMeshNBVNextBestViewFilter::RequestData(
       }
     }
 
-    meshnbv::SuggestOptions options;
-    options.mode = ToMode(this->Candidates);
-    options.top = this->Top;
-    options.worst_k = this->Worst;
-    for (int i = 0; i < 4; ++i)
-    {
-      options.energy.weights[static_cast<std::size_t>(i)] = this->Weights[i];
-    }
-    options.energy.penalty = this->Penalty;
-    options.energy.parallax_delta = this->ParallaxDelta;
-    options.energy.incidence_mu = this->IncidenceMu;
-    options.energy.incidence_sigma = this->IncidenceSigma;
-    options.sampling.directions = this->Directions;
-    options.sampling.seed = this->Seed;
-    options.safety_distance = this->SafetyDistance;
-    options.refine_best = this->RefineBest;
-    options.refine.iterations = this->RefineIterations;
-    options.threads = this->Threads;
-    options.check();
+    const meshnbv::SuggestOptions options = OptionsOf(this);
     const meshnbv::SuggestResult result = meshnbv::suggest_views(
       scene, pri, options, given, vtkMeshNBV::MakeProgressCallback(this, { { "suggest", 1.0 } }));
 
@@ -311,21 +336,13 @@ int vtkMeshNBVNextBestViewFilter::RequestData(
 void vtkMeshNBVNextBestViewFilter::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
-  os << indent << "Candidates: " << this->GetCandidatesAsString() << "\n";
-  os << indent << "Top: " << this->Top << "\n";
-  os << indent << "Worst: " << this->Worst << "\n";
-  os << indent << "Weights: " << this->Weights[0] << ", " << this->Weights[1] << ", "
-     << this->Weights[2] << ", " << this->Weights[3] << "\n";
-  os << indent << "Penalty: " << this->Penalty << "\n";
-  os << indent << "ParallaxDelta: " << this->ParallaxDelta << "\n";
-  os << indent << "IncidenceMu: " << this->IncidenceMu << "\n";
-  os << indent << "IncidenceSigma: " << this->IncidenceSigma << "\n";
-  os << indent << "Directions: " << this->Directions << "\n";
-  os << indent << "SafetyDistance: " << this->SafetyDistance << "\n";
-  os << indent << "RefineBest: " << this->RefineBest << "\n";
-  os << indent << "RefineIterations: " << this->RefineIterations << "\n";
-  os << indent << "Seed: " << this->Seed << "\n";
-  os << indent << "Threads: " << this->Threads << "\n";
+  // Every option of the core's table, under its VTK name (options.h).
+  meshnbv::SuggestOptions options = RawOptionsOf(this);
+  for (const auto& spec : meshnbv::suggest_option_table())
+  {
+    os << indent << meshnbv::vtk_name(spec.name) << ": "
+       << meshnbv::option_value_text(spec.get(options)) << "\n";
+  }
   os << indent << "PRIArrayName: " << this->PRIArrayName << "\n";
   os << indent << "FrustumDepth: " << this->FrustumDepth << "\n";
 }

@@ -65,10 +65,10 @@ public:
 
   ///@{
   /**
-   * Where candidate poses come from (`candidates`): GIVEN, SAMPLED (default)
-   * or REFINED.
+   * Where candidate poses come from (`candidates`): GIVEN, SAMPLED or
+   * REFINED.
    */
-  vtkSetClampMacro(Candidates, int, GIVEN, REFINED);
+  vtkSetMacro(Candidates, int);
   vtkGetMacro(Candidates, int);
   void SetCandidatesToGiven() { this->SetCandidates(GIVEN); }
   void SetCandidatesToSampled() { this->SetCandidates(SAMPLED); }
@@ -78,7 +78,7 @@ public:
 
   ///@{
   /**
-   * Number of suggestions, chosen greedily (`top`, default 1).
+   * Number of suggestions, chosen greedily (`top`).
    */
   vtkSetMacro(Top, int);
   vtkGetMacro(Top, int);
@@ -86,24 +86,31 @@ public:
 
   ///@{
   /**
-   * Faces in the worst region (`worst`, default 10).
+   * Faces in the worst region (`worst_faces`, the paper's K).
    */
-  vtkSetMacro(Worst, int);
-  vtkGetMacro(Worst, int);
+  vtkSetMacro(WorstFaces, int);
+  vtkGetMacro(WorstFaces, int);
   ///@}
 
   ///@{
   /**
-   * Energy weights m1..m4 of occlusion, focus, parallax and incidence
-   * (`weights`, default 0.6, 1.6, 2.1, 0.6).
+   * Energy weights m1..m4 of the occlusion, focus, parallax and incidence
+   * terms (`weight_occlusion`, `weight_focus`, `weight_parallax`,
+   * `weight_incidence`).
    */
-  vtkSetVector4Macro(Weights, double);
-  vtkGetVector4Macro(Weights, double);
+  vtkSetMacro(WeightOcclusion, double);
+  vtkGetMacro(WeightOcclusion, double);
+  vtkSetMacro(WeightFocus, double);
+  vtkGetMacro(WeightFocus, double);
+  vtkSetMacro(WeightParallax, double);
+  vtkGetMacro(WeightParallax, double);
+  vtkSetMacro(WeightIncidence, double);
+  vtkGetMacro(WeightIncidence, double);
   ///@}
 
   ///@{
   /**
-   * Kp, the value of a failed term (`penalty`, default -10).
+   * Kp, the value of a failed term (`penalty`).
    */
   vtkSetMacro(Penalty, double);
   vtkGetMacro(Penalty, double);
@@ -121,7 +128,7 @@ public:
   ///@{
   /**
    * Preferred incidence angle and its spread, in degrees (`incidence_mu`,
-   * default 55; `incidence_sigma`, default 15; kappa = 1 / sigma^2).
+   * default 55; `incidence_sigma`).
    */
   vtkSetMacro(IncidenceMu, double);
   vtkGetMacro(IncidenceMu, double);
@@ -131,7 +138,7 @@ public:
 
   ///@{
   /**
-   * Directions sampled on the hemisphere (`directions`, default 512).
+   * Directions sampled on the hemisphere (`directions`).
    */
   vtkSetMacro(Directions, int);
   vtkGetMacro(Directions, int);
@@ -140,7 +147,7 @@ public:
   ///@{
   /**
    * Minimum distance of a candidate to the surface, as a share of the
-   * bounding-box diagonal (`safety_distance`, default 0.05).
+   * bounding-box diagonal (`safety_distance`).
    */
   vtkSetMacro(SafetyDistance, double);
   vtkGetMacro(SafetyDistance, double);
@@ -148,8 +155,8 @@ public:
 
   ///@{
   /**
-   * REFINED: sampled poses refined per pick (`refine_best`, default 8) and
-   * optimiser iterations (`refine_iterations`, default 150).
+   * REFINED: sampled poses refined per pick (`refine_best`) and
+   * optimiser iterations (`refine_iterations`).
    */
   vtkSetMacro(RefineBest, int);
   vtkGetMacro(RefineBest, int);
@@ -159,7 +166,7 @@ public:
 
   ///@{
   /**
-   * Seed of the sampling (`seed`, default 1).
+   * Seed of the sampling (`seed`).
    */
   vtkSetMacro(Seed, vtkTypeUInt64);
   vtkGetMacro(Seed, vtkTypeUInt64);
@@ -175,7 +182,7 @@ public:
 
   ///@{
   /**
-   * The cell array of input 0 holding the PRI (default "PRI").
+   * The cell array of input 0 holding the PRI.
    */
   vtkSetStdStringFromCharMacro(PRIArrayName);
   vtkGetCharFromStdStringMacro(PRIArrayName);
@@ -221,8 +228,11 @@ protected:
 
   int Candidates;
   int Top;
-  int Worst;
-  double Weights[4];
+  int WorstFaces;
+  double WeightOcclusion;
+  double WeightFocus;
+  double WeightParallax;
+  double WeightIncidence;
   double Penalty;
   double ParallaxDelta;
   double IncidenceMu;

@@ -15,11 +15,47 @@
 #include "vtkMeshNBVProgress.h"
 
 #include "meshnbv/error.h"
+#include "meshnbv/options.h"
 #include "meshnbv/pri.h"
 
 #include <algorithm>
 
 vtkStandardNewMacro(vtkMeshNBVPRIFilter);
+
+namespace
+{
+// The properties as the core's options, unchecked (PrintSelf shows what is
+// set, in range or not).
+meshnbv::PriOptions RawOptionsOf(vtkMeshNBVPRIFilter* f)
+{
+  meshnbv::PriOptions o;
+  o.measure = f->GetMeasure() == vtkMeshNBVPRIFilter::NCC ? meshnbv::Measure::NCC
+                                                          : meshnbv::Measure::SSD;
+  o.samples_per_side = f->GetSamplesPerSide();
+  o.max_views_per_face = f->GetMaxViewsPerFace();
+  o.max_incidence_angle = f->GetMaxIncidenceAngle();
+  o.edge_margin = f->GetEdgeMargin();
+  o.check_interior_occlusion = f->GetCheckInteriorOcclusion() != 0;
+  o.color = f->GetColor() != 0;
+  o.textureless_variance = f->GetTexturelessVariance();
+  o.threads = f->GetThreads();
+  return o;
+}
+
+// Checked: an out-of-range property is an error naming it and its range.
+meshnbv::PriOptions OptionsOf(vtkMeshNBVPRIFilter* f)
+{
+  const int measure = f->GetMeasure();
+  if (measure != vtkMeshNBVPRIFilter::SSD && measure != vtkMeshNBVPRIFilter::NCC)
+  {
+    throw meshnbv::Error(
+      "Measure must be 0 (SSD) or 1 (NCC), got " + std::to_string(measure));
+  }
+  meshnbv::PriOptions o = RawOptionsOf(f);
+  o.check();
+  return o;
+}
+} // namespace
 
 //------------------------------------------------------------------------------
 vtkMeshNBVPRIFilter::vtkMeshNBVPRIFilter()
@@ -90,16 +126,7 @@ int vtkMeshNBVPRIFilter::RequestData(
         block.hasPixels && block.view.used ? vtkMeshNBV::ToViewWithPixels(block) : block.view);
     }
 
-    meshnbv::PriOptions options;
-    options.measure = this->Measure == NCC ? meshnbv::Measure::NCC : meshnbv::Measure::SSD;
-    options.samples_per_side = this->SamplesPerSide;
-    options.max_views_per_face = this->MaxViewsPerFace;
-    options.max_incidence_angle = this->MaxIncidenceAngle;
-    options.edge_margin = this->EdgeMargin;
-    options.check_interior_occlusion = this->CheckInteriorOcclusion != 0;
-    options.color = this->Color != 0;
-    options.textureless_variance = this->TexturelessVariance;
-    options.threads = this->Threads;
+    const meshnbv::PriOptions options = OptionsOf(this);
     const meshnbv::PriResult result = meshnbv::compute_pri(scene, options,
       vtkMeshNBV::MakeProgressCallback(this, { { "visibility", 0.2 }, { "pri", 0.8 } }));
 
@@ -132,14 +159,13 @@ int vtkMeshNBVPRIFilter::RequestData(
 void vtkMeshNBVPRIFilter::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
-  os << indent << "Measure: " << this->GetMeasureAsString() << "\n";
-  os << indent << "SamplesPerSide: " << this->SamplesPerSide << "\n";
-  os << indent << "MaxViewsPerFace: " << this->MaxViewsPerFace << "\n";
-  os << indent << "MaxIncidenceAngle: " << this->MaxIncidenceAngle << "\n";
-  os << indent << "CheckInteriorOcclusion: " << this->CheckInteriorOcclusion << "\n";
-  os << indent << "Color: " << this->Color << "\n";
-  os << indent << "TexturelessVariance: " << this->TexturelessVariance << "\n";
-  os << indent << "Threads: " << this->Threads << "\n";
+  // Every option of the core's table, under its VTK name (options.h).
+  const meshnbv::PriOptions options = RawOptionsOf(this);
+  for (const auto& spec : meshnbv::pri_option_table())
+  {
+    os << indent << meshnbv::vtk_name(spec.name) << ": "
+       << meshnbv::option_value_text(spec.get(options)) << "\n";
+  }
   os << indent << "PRIArrayName: " << this->PRIArrayName << "\n";
   os << indent << "PRIViewsArrayName: " << this->PRIViewsArrayName << "\n";
 }

@@ -58,9 +58,9 @@ public:
 
   ///@{
   /**
-   * The photo-consistency measure (`measure`): SSD (default) or NCC.
+   * The photo-consistency measure (`measure`): SSD or NCC.
    */
-  vtkSetClampMacro(Measure, int, SSD, NCC);
+  vtkSetMacro(Measure, int);
   vtkGetMacro(Measure, int);
   void SetMeasureToSSD() { this->SetMeasure(SSD); }
   void SetMeasureToNCC() { this->SetMeasure(NCC); }
@@ -69,7 +69,7 @@ public:
 
   ///@{
   /**
-   * Lattice subdivisions per face side (`samples_per_side`); 0 (default) =
+   * Lattice subdivisions per face side (`samples_per_side`); 0 =
    * automatic: the largest projected edge in pixels, clamped to [2, 32].
    */
   vtkSetMacro(SamplesPerSide, int);
@@ -79,7 +79,7 @@ public:
   ///@{
   /**
    * Views compared per face (`max_views_per_face`), smallest incidence angle
-   * first; 0 (default) = all of them.
+   * first; 0 = all of them.
    */
   vtkSetMacro(MaxViewsPerFace, int);
   vtkGetMacro(MaxViewsPerFace, int);
@@ -88,7 +88,7 @@ public:
   ///@{
   /**
    * Views seeing a face at a larger angle to its normal, in degrees, do not
-   * count as seeing it (`max_incidence_angle`, default 80; 90 = plain
+   * count as seeing it (`max_incidence_angle`; 90 = plain
    * back-face rule).
    */
   vtkSetMacro(MaxIncidenceAngle, double);
@@ -98,16 +98,16 @@ public:
   ///@{
   /**
    * Keep the sampling lattice this many pixels inside each face in every
-   * view (`edge_margin`, default 0.5; 0 = the whole face).
+   * view (`edge_margin`; 0 = the whole face).
    */
-  vtkSetClampMacro(EdgeMargin, double, 0.0, 16.0);
+  vtkSetMacro(EdgeMargin, double);
   vtkGetMacro(EdgeMargin, double);
   ///@}
 
   ///@{
   /**
    * Also require a face's centroid and edge midpoints to be unoccluded
-   * (`check_interior_occlusion`, default on).
+   * (`check_interior_occlusion`).
    */
   vtkSetMacro(CheckInteriorOcclusion, vtkTypeBool);
   vtkGetMacro(CheckInteriorOcclusion, vtkTypeBool);
@@ -116,7 +116,7 @@ public:
 
   ///@{
   /**
-   * Compare R, G, B instead of luminance (`color`, default off).
+   * Compare R, G, B instead of luminance (`color`).
    */
   vtkSetMacro(Color, vtkTypeBool);
   vtkGetMacro(Color, vtkTypeBool);
@@ -126,7 +126,7 @@ public:
   ///@{
   /**
    * NCC: patches with a lower variance are textureless
-   * (`textureless_variance`, default 1e-6).
+   * (`textureless_variance`).
    */
   vtkSetMacro(TexturelessVariance, double);
   vtkGetMacro(TexturelessVariance, double);
@@ -134,7 +134,7 @@ public:
 
   ///@{
   /**
-   * Worker threads (`threads`); 0 (default) = all cores. The result does not
+   * Worker threads (`threads`); 0 = all cores. The result does not
    * depend on it.
    */
   vtkSetMacro(Threads, int);

@@ -169,7 +169,7 @@ def main():
     nbv.SetTop(2)
     nbv.Update()
     assert pri.GetMeasureAsString() == "ssd" and pri.GetMaxIncidenceAngle() == 80.0
-    assert nbv.GetCandidatesAsString() == "sampled" and nbv.GetWeights() == (0.6, 1.6, 2.1, 0.6)
+    assert nbv.GetCandidatesAsString() == "sampled" and (nbv.GetWeightOcclusion(), nbv.GetWeightFocus(), nbv.GetWeightParallax(), nbv.GetWeightIncidence()) == (0.6, 1.6, 2.1, 0.6)
 
     # PRI equals the CLI's.
     mesh = pri.GetOutput()

@@ -214,10 +214,10 @@ TEST(MeshlabServer, SuggestGivenCandidatesEqualsCommandLine) {
 TEST(MeshlabServer, SelectWorstFacesSelectsTheCommandLinesWorstFaces) {
   const std::string dir = project_copy("select");
   const Process cli = meshnbv_cli("pri " + quote(dir + "/ml.mlp") + " --out " + quote(dir + "/cli_pri.ply") +
-                          " --json " + quote(dir + "/cli_pri.json") + " --worst 25 --quiet");
+                          " --json " + quote(dir + "/cli_pri.json") + " --summary-worst 25 --quiet");
   ASSERT_EQ(cli.status, 0) << cli.output;
   // The CLI's PLY (face quality with NaN) opened as a mesh: MeshLab reads PRI back.
-  const std::string sel = edited_script("select_worst_faces", dir + "/select.mlx", {{"worst", "25"}});
+  const std::string sel = edited_script("select_worst_faces", dir + "/select.mlx", {{"worst_faces", "25"}});
   const Process ml = meshlabserver("-i " + quote(dir + "/cli_pri.ply") + " -s " + quote(sel) + " -o " +
                                quote(dir + "/selected.ply") + " -m ff sa");
   ASSERT_EQ(ml.status, 0) << ml.output;

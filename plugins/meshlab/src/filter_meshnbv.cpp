@@ -12,6 +12,7 @@
 #include "document_scene.h"
 #include "meshnbv/energy.h"
 #include "meshnbv/error.h"
+#include "meshnbv/options.h"
 #include "meshnbv/results.h"
 #include "meshnbv/planner.h"
 #include "meshnbv/pri.h"
@@ -34,78 +35,10 @@ struct ParameterHelp {
   const char* help;
 };
 
-const ParameterHelp kPriParameters[] = {
-    {"measure", "Measure", "ssd (the paper's) or ncc",
-     "Photo-consistency measure of a pair of views: ssd = mean squared difference of the "
-     "samples (the paper's choice); ncc = (1 - normalised cross-correlation) / 2, insensitive "
-     "to contrast, pairs with a textureless patch skipped."},
-    {"samples_per_side", "Samples per side", "lattice subdivisions per face side, 0 = automatic",
-     "Subdivisions r of the barycentric lattice on each face ((r+1)(r+2)/2 samples). 0 = "
-     "automatic: the largest projected edge in pixels, clamped to [2, 32]."},
-    {"max_views_per_face", "Max views per face", "best-facing views compared, 0 = all",
-     "Views compared per face, those with the smallest incidence angle first (0 = all views "
-     "that see the face; otherwise at least 2)."},
-    {"max_incidence_angle", "Max incidence angle", "degrees; more grazing views do not count",
-     "Degrees. A view whose direction makes a larger angle with the face normal does not count "
-     "as seeing the face (grazing views give slivers). 90 = the plain back-face rule."},
-    {"edge_margin", "Edge margin", "pixels the samples stay inside each face",
-     "Pixels. The sampling lattice is contracted towards the face's centroid so that it stays "
-     "this far inside the face in every view: samples on the border would read the pixels "
-     "beyond it (the next face, the background). 0 = sample the whole face."},
-    {"check_interior_occlusion", "Check interior occlusion",
-     "centroid and edge midpoints must be unoccluded too",
-     "Besides its three vertices, the face's centroid and edge midpoints must be unoccluded in a "
-     "view (catches partial occlusion, e.g. behind a thin parapet)."},
-    {"color", "Compare colour", "compare R, G, B instead of luminance",
-     "Compare R, G, B samples instead of luminance."},
-    {"threads", "Threads", "0 = all cores",
-     "Worker threads (0 = all cores). Results do not depend on it."},
-};
-
-const ParameterHelp kSuggestParameters[] = {
-    {"candidates", "Candidates", "given (raster layers without image), sampled or refined",
-     "Where candidate poses come from. given: the raster layers without an image (e.g. poses "
-     "planned elsewhere), all ranked; sampled: a Fibonacci spiral of directions on the "
-     "hemisphere of the worst region's mean normal, at 0.75, 1 and 1.5 times the median viewing "
-     "distance of the existing rasters, looking at the region, with their intrinsics; refined: "
-     "the best sampled poses improved by Nelder-Mead over position and viewing direction."},
-    {"top", "Suggestions", "number of suggestions (greedy batch)",
-     "Number of suggestions, chosen greedily: each pick counts as an existing view for the next "
-     "ones."},
-    {"worst", "Worst faces (K)", "faces in the worst region",
-     "The K observed faces with the highest PRI form the worst region whose vertices the energy "
-     "scores."},
-    {"weight_occlusion", "Weight occlusion (m1)", "m1",
-     "Weight of the occlusion term O (1 if a worst vertex is visible, else the penalty)."},
-    {"weight_focus", "Weight focus (m2)", "m2",
-     "Weight of the focus term F (Gaussian preference for projecting near the image centre)."},
-    {"weight_parallax", "Weight parallax (m3)", "m3",
-     "Weight of the parallax term Par (baseline / depth to each existing view above the "
-     "threshold)."},
-    {"weight_incidence", "Weight incidence (m4)", "m4",
-     "Weight of the incidence term I (von Mises preference for the angle to the vertex "
-     "normal)."},
-    {"penalty", "Penalty (Kp)", "value of a failed term",
-     "Value of a term when its condition fails (vertex occluded or outside the image, too small "
-     "a baseline)."},
-    {"parallax_delta", "Parallax threshold", "baseline / depth threshold",
-     "Baseline / depth ratio above which a pair (candidate, existing view) counts as parallax."},
-    {"incidence_mu", "Incidence mean", "preferred incidence angle, degrees",
-     "Preferred angle (degrees) between the vertex normal and the ray to the camera."},
-    {"incidence_sigma", "Incidence spread", "its spread, degrees",
-     "Degrees; the von Mises concentration is 1 / sigma^2 (sigma in radians)."},
-    {"directions", "Sampled directions", "directions on the hemisphere",
-     "sampled/refined: directions on the hemisphere."},
-    {"safety_distance", "Safety distance", "minimum distance to the surface, share of the diagonal",
-     "Candidates nearer than this share of the bounding-box diagonal to the surface, or inside "
-     "the mesh's volume, are rejected."},
-    {"refine_best", "Refined candidates", "poses refined per suggestion",
-     "refined: best sampled poses refined per suggestion."},
-    {"refine_iterations", "Refine iterations", "Nelder-Mead iterations",
-     "refined: Nelder-Mead iterations per pose."},
-    {"seed", "Seed", "turns the sampling spiral",
-     "Turns the sampling spiral (same seed, same candidates)."},
-    {"threads", "Threads", "0 = all cores", "Worker threads (0 = all cores)."},
+// The parameters that belong to the plugin alone (how it takes its input
+// and shows its output); every other parameter is an option of the core's
+// tables (meshnbv/options.h), with its name, default, range and help.
+const ParameterHelp kSuggestOwnParameters[] = {
     {"use_face_quality", "Use face quality as PRI", "else PRI is computed with defaults",
      "Take PRI from the mesh's per-face quality, as Compute PRI leaves it (NaN = unobserved). "
      "Off, or when the mesh has no face quality: PRI is computed with Compute PRI's defaults."},
@@ -114,29 +47,88 @@ const ParameterHelp kSuggestParameters[] = {
      "centre), coloured from red (first) to yellow, face quality = rank."},
 };
 
-const ParameterHelp kSelectParameters[] = {
-    {"worst", "Worst faces (K)", "number of faces to select",
-     "Number of faces to select: the observed faces with the highest face quality (PRI), ties "
-     "by face index, as Suggest Next View picks its worst region. NaN (unobserved) faces are "
-     "never selected."},
-};
+// The help MeshLab shows: the table's text and the accepted range.
+template <class Options>
+QString tooltip(const OptionSpec<Options>& spec) {
+  std::string text = spec.help;
+  if (spec.type == OptionType::Int || spec.type == OptionType::Real)
+    text += " (" + spec.range.describe() + ")";
+  return QString::fromStdString(text + ".");
+}
 
-template <std::size_t N>
-const ParameterHelp& help(const ParameterHelp (&table)[N], const char* name) {
-  for (const ParameterHelp& p : table)
-    if (std::string(p.name) == name) return p;
-  throw std::logic_error(std::string("no help for parameter ") + name);
+// One parameter per option of `table`, at the struct's default.
+template <class Options>
+void add_table_parameters(RichParameterList& par, const OptionTable<Options>& table,
+                          const std::vector<std::string>& only = {}) {
+  const Options defaults;
+  for (const OptionSpec<Options>& s : table) {
+    if (!only.empty() && std::find(only.begin(), only.end(), s.name) == only.end()) continue;
+    const QString name = QString::fromStdString(s.name), label = QString::fromStdString(s.label);
+    const OptionValue v = s.get(defaults);
+    switch (s.type) {
+      case OptionType::Bool: par.addParam(RichBool(name, std::get<bool>(v), label, tooltip(s))); break;
+      case OptionType::Int:
+        par.addParam(RichInt(name, int(std::get<std::int64_t>(v)), label, tooltip(s)));
+        break;
+      case OptionType::Real:
+        par.addParam(RichFloat(name, float(std::get<double>(v)), label, tooltip(s)));
+        break;
+      case OptionType::Choice: {
+        QStringList words;
+        for (const auto& c : s.choices) words << QString::fromStdString(c);
+        par.addParam(RichEnum(name, words.indexOf(QString::fromStdString(std::get<std::string>(v))),
+                              words, label, tooltip(s)));
+        break;
+      }
+    }
+  }
+}
+
+// The options of `table` from the filter's parameters, checked (one-line
+// errors naming the parameter and its range).
+template <class Options>
+Options table_options(const RichParameterList& par, const OptionTable<Options>& table,
+                      const std::vector<std::string>& only = {}) {
+  Options o;
+  for (const OptionSpec<Options>& s : table) {
+    if (!only.empty() && std::find(only.begin(), only.end(), s.name) == only.end()) continue;
+    const QString name = QString::fromStdString(s.name);
+    switch (s.type) {
+      case OptionType::Bool: s.set(o, par.getBool(name)); break;
+      case OptionType::Int: s.set(o, std::int64_t(par.getInt(name))); break;
+      case OptionType::Real: s.set(o, decimal(par.getFloat(name))); break;
+      case OptionType::Choice: {
+        const int index = par.getEnum(name);
+        if (index < 0 || std::size_t(index) >= s.choices.size())
+          throw Error(s.name + ": unknown value " + std::to_string(index));
+        s.set(o, s.choices[std::size_t(index)]);
+        break;
+      }
+    }
+    const std::string problem = s.problem(s.get(o));
+    if (!problem.empty()) throw Error(problem);
+  }
+  return o;
 }
 
 // One compact paragraph: MeshLab shows the info above the parameters.
-template <std::size_t N>
-QString parameter_list(const ParameterHelp (&table)[N]) {
+template <class Options>
+QString parameter_list(const OptionTable<Options>& table, const std::vector<std::string>& only = {},
+                       const std::vector<ParameterHelp>& own = {}) {
   QStringList items;
-  for (const ParameterHelp& p : table)
+  for (const auto& s : table)
+    if (only.empty() || std::find(only.begin(), only.end(), s.name) != only.end())
+      items << QString("<b>%1</b>: %2")
+                   .arg(QString::fromStdString(s.name))
+                   .arg(QString::fromStdString(s.label).toHtmlEscaped());
+  for (const ParameterHelp& p : own)
     items << QString("<b>%1</b>: %2").arg(p.name).arg(QString(p.brief).toHtmlEscaped());
   return "<p>Parameters (each explained in its tooltip and under Help): " + items.join("; ") +
          ".</p>";
 }
+
+// Select Worst Faces takes the suggestion's worst set size, under its name.
+const std::vector<std::string> kSelectOptions = {"worst_faces"};
 
 const char* kCitation =
     "<p>See: <i>Luca Morreale, Andrea Romanoni, Matteo Matteucci</i>, <b>\"Predicting the Next "
@@ -179,42 +171,13 @@ std::string format(double value) {
 }
 
 PriOptions pri_options(const RichParameterList& par) {
-  PriOptions o;
-  o.measure = par.getEnum("measure") == 1 ? Measure::NCC : Measure::SSD;
-  o.samples_per_side = par.getInt("samples_per_side");
-  o.max_views_per_face = par.getInt("max_views_per_face");
-  o.max_incidence_angle = decimal(par.getFloat("max_incidence_angle"));
-  o.edge_margin = decimal(par.getFloat("edge_margin"));
-  o.check_interior_occlusion = par.getBool("check_interior_occlusion");
-  o.color = par.getBool("color");
-  o.threads = par.getInt("threads");
+  PriOptions o = table_options(par, pri_option_table());
   o.check();
   return o;
 }
 
 SuggestOptions suggest_options(const RichParameterList& par) {
-  SuggestOptions o;
-  static const CandidateMode modes[] = {CandidateMode::Given, CandidateMode::Sampled,
-                                        CandidateMode::Refined};
-  const int mode = par.getEnum("candidates");
-  if (mode < 0 || mode > 2) throw Error("candidates: unknown value " + std::to_string(mode));
-  o.mode = modes[mode];
-  o.top = par.getInt("top");
-  o.worst_k = par.getInt("worst");
-  o.energy.weights = {decimal(par.getFloat("weight_occlusion")), decimal(par.getFloat("weight_focus")),
-                      decimal(par.getFloat("weight_parallax")), decimal(par.getFloat("weight_incidence"))};
-  o.energy.penalty = decimal(par.getFloat("penalty"));
-  o.energy.parallax_delta = decimal(par.getFloat("parallax_delta"));
-  o.energy.incidence_mu = decimal(par.getFloat("incidence_mu"));
-  o.energy.incidence_sigma = decimal(par.getFloat("incidence_sigma"));
-  o.sampling.directions = par.getInt("directions");
-  o.safety_distance = decimal(par.getFloat("safety_distance"));
-  o.refine_best = par.getInt("refine_best");
-  o.refine.iterations = par.getInt("refine_iterations");
-  const int seed = par.getInt("seed");
-  if (seed < 0) throw Error("seed must be >= 0");
-  o.sampling.seed = std::uint64_t(seed);
-  o.threads = par.getInt("threads");
+  SuggestOptions o = table_options(par, suggest_option_table());
   o.check();
   return o;
 }
@@ -262,7 +225,7 @@ QString FilterMeshNbvPlugin::filterInfo(FilterIDType filter) const {
              "fewer than two views see the face or, with ncc, every pair is textureless) and "
              "colours faces from green (5th percentile) to red (95th), grey where undefined. "
              "The log gives the counts, percentiles and time." +
-             parameter_list(kPriParameters) + kCitation;
+             parameter_list(pri_option_table()) + kCitation;
     case FP_SUGGEST_NEXT_VIEW:
       return "Suggests where the next photos should be taken to fix the worst part of the "
              "mesh. The K faces with the highest PRI form the worst region; each candidate "
@@ -271,14 +234,15 @@ QString FilterMeshNbvPlugin::filterInfo(FilterIDType filter) const {
              "incidence), and the best poses are added as raster layers without image, "
              "labelled nbv_1, nbv_2, ... (save the project to keep them). The log lists each "
              "suggestion's energy, its four terms, its centre and the worst faces it sees.<br>"
-             "Existing views = raster layers with an image. MeshLab has no 4-vector parameter, "
-             "so the weights m1..m4 are four parameters (the CLI's --weights m1,m2,m3,m4)." +
-             parameter_list(kSuggestParameters) + kCitation;
+             "Existing views = raster layers with an image." +
+             parameter_list(suggest_option_table(), {},
+                            {std::begin(kSuggestOwnParameters), std::end(kSuggestOwnParameters)}) +
+             kCitation;
     case FP_SELECT_WORST_FACES:
       return "Selects the K worst faces by PRI (the current per-face quality, as Compute PRI "
              "writes it), replacing the current face selection, so that you see where the "
              "reconstruction is poor. They are the faces Suggest Next View starts from." +
-             parameter_list(kSelectParameters) + kCitation;
+             parameter_list(suggest_option_table(), kSelectOptions) + kCitation;
   }
   return "";
 }
@@ -317,58 +281,20 @@ int FilterMeshNbvPlugin::postCondition(QAction* action) const {
 }
 
 void FilterMeshNbvPlugin::initParameterSet(QAction* action, MeshDocument&, RichParameterList& par) {
-  // Defaults come from the core's option structs, so they cannot drift.
-  const PriOptions pri;
-  const SuggestOptions sug;
-  auto label = [](const auto& table, const char* name) { return QString(help(table, name).label); };
-  auto tip = [](const auto& table, const char* name) { return QString(help(table, name).help); };
-#define MESHNBV_TEXT(table, name) label(table, name), tip(table, name)
+  // Names, defaults, ranges and help come from the core's option tables, so
+  // that they cannot drift from the other front ends (docs/options.md).
   switch (ID(action)) {
-    case FP_COMPUTE_PRI: {
-      const auto& t = kPriParameters;
-      par.addParam(RichEnum("measure", pri.measure == Measure::NCC ? 1 : 0, QStringList{"ssd", "ncc"},
-                            MESHNBV_TEXT(t, "measure")));
-      par.addParam(RichInt("samples_per_side", pri.samples_per_side, MESHNBV_TEXT(t, "samples_per_side")));
-      par.addParam(RichInt("max_views_per_face", pri.max_views_per_face,
-                           MESHNBV_TEXT(t, "max_views_per_face")));
-      par.addParam(RichFloat("max_incidence_angle", float(pri.max_incidence_angle),
-                             MESHNBV_TEXT(t, "max_incidence_angle")));
-      par.addParam(RichFloat("edge_margin", float(pri.edge_margin), MESHNBV_TEXT(t, "edge_margin")));
-      par.addParam(RichBool("check_interior_occlusion", pri.check_interior_occlusion,
-                            MESHNBV_TEXT(t, "check_interior_occlusion")));
-      par.addParam(RichBool("color", pri.color, MESHNBV_TEXT(t, "color")));
-      par.addParam(RichInt("threads", pri.threads, MESHNBV_TEXT(t, "threads")));
-      break;
-    }
+    case FP_COMPUTE_PRI: add_table_parameters(par, pri_option_table()); break;
     case FP_SUGGEST_NEXT_VIEW: {
-      const auto& t = kSuggestParameters;
-      par.addParam(RichEnum("candidates", int(sug.mode), QStringList{"given", "sampled", "refined"},
-                            MESHNBV_TEXT(t, "candidates")));
-      par.addParam(RichInt("top", sug.top, MESHNBV_TEXT(t, "top")));
-      par.addParam(RichInt("worst", sug.worst_k, MESHNBV_TEXT(t, "worst")));
-      par.addParam(RichFloat("weight_occlusion", float(sug.energy.weights[0]), MESHNBV_TEXT(t, "weight_occlusion")));
-      par.addParam(RichFloat("weight_focus", float(sug.energy.weights[1]), MESHNBV_TEXT(t, "weight_focus")));
-      par.addParam(RichFloat("weight_parallax", float(sug.energy.weights[2]), MESHNBV_TEXT(t, "weight_parallax")));
-      par.addParam(RichFloat("weight_incidence", float(sug.energy.weights[3]), MESHNBV_TEXT(t, "weight_incidence")));
-      par.addParam(RichFloat("penalty", float(sug.energy.penalty), MESHNBV_TEXT(t, "penalty")));
-      par.addParam(RichFloat("parallax_delta", float(sug.energy.parallax_delta), MESHNBV_TEXT(t, "parallax_delta")));
-      par.addParam(RichFloat("incidence_mu", float(sug.energy.incidence_mu), MESHNBV_TEXT(t, "incidence_mu")));
-      par.addParam(RichFloat("incidence_sigma", float(sug.energy.incidence_sigma), MESHNBV_TEXT(t, "incidence_sigma")));
-      par.addParam(RichInt("directions", sug.sampling.directions, MESHNBV_TEXT(t, "directions")));
-      par.addParam(RichFloat("safety_distance", float(sug.safety_distance), MESHNBV_TEXT(t, "safety_distance")));
-      par.addParam(RichInt("refine_best", sug.refine_best, MESHNBV_TEXT(t, "refine_best")));
-      par.addParam(RichInt("refine_iterations", sug.refine.iterations, MESHNBV_TEXT(t, "refine_iterations")));
-      par.addParam(RichInt("seed", int(sug.sampling.seed), MESHNBV_TEXT(t, "seed")));
-      par.addParam(RichInt("threads", sug.threads, MESHNBV_TEXT(t, "threads")));
-      par.addParam(RichBool("use_face_quality", true, MESHNBV_TEXT(t, "use_face_quality")));
-      par.addParam(RichBool("add_frustum_layer", false, MESHNBV_TEXT(t, "add_frustum_layer")));
+      add_table_parameters(par, suggest_option_table());
+      for (const ParameterHelp& p : kSuggestOwnParameters)
+        par.addParam(RichBool(p.name, std::string(p.name) == "use_face_quality", p.label, p.help));
       break;
     }
     case FP_SELECT_WORST_FACES:
-      par.addParam(RichInt("worst", sug.worst_k, MESHNBV_TEXT(kSelectParameters, "worst")));
+      add_table_parameters(par, suggest_option_table(), kSelectOptions);
       break;
   }
-#undef MESHNBV_TEXT
 }
 
 bool FilterMeshNbvPlugin::applyFilter(QAction* action, MeshDocument& document,
@@ -436,8 +362,7 @@ void FilterMeshNbvPlugin::selectWorstFaces(MeshDocument& document, const RichPar
     throw Error("the mesh layer '" + model->label().toStdString() +
                 "' has no face quality: run Compute PRI first (or open a mesh saved with PRI as "
                 "face quality, e.g. by `meshnbv pri`)");
-  const int k = par.getInt("worst");
-  if (k < 1) throw Error("worst must be >= 1");
+  const int k = table_options(par, suggest_option_table(), kSelectOptions).worst_k;
   const meshlab::ModelMesh mesh = meshlab::mesh_from_model(*model);
   const WorstRegion region = worst_region(mesh.mesh, meshlab::face_quality(mesh), k);
   vcg::tri::UpdateSelection<CMeshO>::FaceClear(model->cm);
