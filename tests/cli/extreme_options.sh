@@ -129,11 +129,11 @@ for d in noise:1e308 noise:-1 dent:nan hole:0:1e308 hole:0:1 decimate:0.999999 d
 done
 
 # Out-of-range values are named with their range.
-expect_error "samples_per_side must be 0 (automatic) or in [2, 64], got 1000" \
+expect_error "--samples-per-side must be 0 (automatic) or in [2, 64], got 1000" \
   "$MESHNBV" pri "$S" --out "$TMP/p.ply" --samples-per-side 1000
 expect_error "--threads must be 0 (all cores) or in [1, 1024], got -1" "$MESHNBV" pri "$S" --out "$TMP/p.ply" --threads -1
-expect_error "edge_margin must be in [0, 16] pixels, got nan" "$MESHNBV" pri "$S" --out "$TMP/p.ply" --edge-margin nan
-expect_error "incidence_sigma must be in [0.1, 180] degrees, got 0" \
+expect_error "--edge-margin must be in [0, 16] pixels, got nan" "$MESHNBV" pri "$S" --out "$TMP/p.ply" --edge-margin nan
+expect_error "--incidence-sigma must be in [0.1, 180] degrees, got 0" \
   "$MESHNBV" suggest "$S" --pri "$TMP/pri.ply" --out "$TMP/s2.json" --incidence-sigma 0
 expect_error "top must be in [1, 100], got 2147483647" \
   "$MESHNBV" suggest "$S" --pri "$TMP/pri.ply" --out "$TMP/s2.json" --top 2147483647
