@@ -12,15 +12,7 @@
 using namespace meshnbv;
 
 namespace {
-PinholeCamera axis_camera() {
-  PinholeCamera c;
-  c.fx = c.fy = 500;
-  c.cx = 319.5;
-  c.cy = 239.5;
-  c.width = 640;
-  c.height = 480;
-  return c;
-}
+PinholeCamera axis_camera() { return test::centred_camera(500, 640, 480); }
 constexpr double kDeg = M_PI / 180.0;
 }  // namespace
 

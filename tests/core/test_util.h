@@ -9,9 +9,23 @@
 
 #include <gtest/gtest.h>
 
+#include "meshnbv/camera.h"
+
 namespace meshnbv::test {
 
 inline std::string data_dir() { return MESHNBV_TEST_DATA_DIR; }
+
+// A camera at the origin looking along +z with focal length f (pixels) and
+// the principal point at the centre of a width x height image.
+inline PinholeCamera centred_camera(double f, int width, int height) {
+  PinholeCamera c;
+  c.fx = c.fy = f;
+  c.cx = (width - 1) / 2.0;
+  c.cy = (height - 1) / 2.0;
+  c.width = width;
+  c.height = height;
+  return c;
+}
 
 // A fresh, empty folder for one test; per process, because ctest runs the
 // tests of one executable as parallel processes.

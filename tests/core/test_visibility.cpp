@@ -17,15 +17,7 @@ using namespace meshnbv;
 namespace {
 
 // 64 x 48 pixels, f = 64: at depth 2, x = 2 (u - 31.5) / 64 exactly.
-PinholeCamera axis_camera() {
-  PinholeCamera c;
-  c.fx = c.fy = 64;
-  c.cx = 31.5;
-  c.cy = 23.5;
-  c.width = 64;
-  c.height = 48;
-  return c;
-}
+PinholeCamera axis_camera() { return test::centred_camera(64, 64, 48); }
 
 // The point at depth z that projects to pixel (u, v) of axis_camera().
 Vec3 at_pixel(double u, double v, double z) {

@@ -262,43 +262,33 @@ def check_meshlab(tool, tables, work):
 
 # ------------------------------------------------------------------------ VTK
 def check_vtk(tables, scene):
-    from vtkmodules.util.misc import calldata_type
-    from vtkmodules.vtkCommonCore import VTK_STRING, vtkStringOutputWindow, vtkOutputWindow
+    from vtkmodules.vtkCommonCore import vtkStringOutputWindow, vtkOutputWindow
 
     from meshnbv.vtk import vtkMeshNBVNextBestViewFilter, vtkMeshNBVPRIFilter, vtkMeshNBVSceneReader
+
+    # The VTK tests' own error collector.
+    sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "filters"))
+    from test_pipeline import watch_errors
 
     window = vtkStringOutputWindow()
     vtkOutputWindow.SetInstance(window)  # errors are collected, not printed
     reader = vtkMeshNBVSceneReader()
     reader.SetFileName(scene)
-    pri = vtkMeshNBVPRIFilter()
-    pri.SetInputConnection(reader.GetOutputPort(0))
-    pri.SetViewsConnection(reader.GetViewsOutputPort())
-    nbv = vtkMeshNBVNextBestViewFilter()
-    nbv.SetInputConnection(pri.GetOutputPort())
-    nbv.SetViewsConnection(reader.GetViewsOutputPort())
+    pri, nbv = vtkMeshNBVPRIFilter(), vtkMeshNBVNextBestViewFilter()
+    for upstream, algorithm in ((reader, pri), (pri, nbv)):  # mesh from upstream, views from the reader
+        algorithm.SetInputConnection(upstream.GetOutputPort(0))
+        algorithm.SetViewsConnection(reader.GetViewsOutputPort())
     pri.Update()
     if pri.GetOutput().GetCellData().GetArray("PRI") is None:
         fail("VTK: the PRI filter failed on the sample scene: " + window.GetOutput())
         return 0
-
-    def errors_of(algorithm):
-        messages = []
-
-        @calldata_type(VTK_STRING)
-        def on_error(caller, event, message):
-            messages.append(message)
-
-        algorithm.AddObserver("ErrorEvent", on_error)
-        algorithm.GetExecutive().AddObserver("ErrorEvent", lambda *args: None)
-        return messages
 
     checked = 0
     for table, algorithm, klass in (("pri", pri, vtkMeshNBVPRIFilter),
                                     ("suggest", nbv, vtkMeshNBVNextBestViewFilter)):
         fresh = klass()
         printed = str(fresh)
-        messages = errors_of(algorithm)
+        messages = watch_errors(algorithm)
         for o in tables[table]:
             where = f"VTK {klass.__name__}.{o['vtk']}"
             get = getattr(fresh, "Get" + o["vtk"], None)

@@ -13,7 +13,8 @@
 namespace meshnbv {
 
 SafetyChecker::SafetyChecker(const TriangleMesh& mesh, const RayCaster& caster, double distance)
-    : mesh_(mesh), caster_(caster), distance_(distance) {
+    : mesh_(mesh), caster_(caster), distance_(distance),
+      step_(1e-6 * std::max(1e-300, mesh.bounding_box().diagonal())) {
   // Distances to a surface of zero-area faces only would be meaningless.
   const double diagonal = mesh.bounding_box().diagonal();
   bool any_area = false;
@@ -30,8 +31,15 @@ bool SafetyChecker::inside_volume(const Vec3& p) const {
                                            Vec3(0.401, -0.816, 0.416).normalized()};
   int inside = 0;
   for (const Vec3& d : dirs) {
+    // Signed crossings from p to infinity: +1 leaving a solid, -1 entering.
+    int winding = 0;
+    double t = 0;
     RayHit hit;
-    if (caster_.intersect(p, d, &hit) && mesh_.face_normal(std::size_t(hit.face)).dot(d) > 0) ++inside;
+    for (std::size_t k = 0; k <= mesh_.faces.size() && caster_.intersect(p, d, &hit, t); ++k) {
+      winding += mesh_.face_normal(std::size_t(hit.face)).dot(d) > 0 ? 1 : -1;
+      t = hit.distance + step_;
+    }
+    inside += winding > 0;
   }
   return inside >= 2;
 }

@@ -16,12 +16,13 @@ namespace meshnbv {
 class SafetyChecker {
  public:
   SafetyChecker(const TriangleMesh& mesh, const RayCaster& caster, double distance);
-  // Inside when, along a majority of three fixed directions, the first
-  // surface hit is seen from its back: the point is enclosed by a solid (also
-  // under an open ground plane). Works for unions of disjoint closed
-  // components; where components overlap, a point inside one near a face of
-  // the other can read as outside (tests/core/test_candidates.cpp). On the
-  // surface the answer is unspecified (safe() rejects it as too close).
+  // Inside when, along a majority of three fixed directions, the surface
+  // crossings of the ray winds around the point: faces seen from their back
+  // (leaving a solid) outnumber those seen from their front (entering one).
+  // That is the winding number along the ray: right for unions of closed
+  // components, disjoint or overlapping, and under an open ground plane
+  // (tests/core/test_candidates.cpp). On the surface the answer is
+  // unspecified (safe() rejects it as too close).
   bool inside_volume(const Vec3& p) const;
   double distance_to_surface(const Vec3& p) const { return caster_.closest_point(p); }
   bool too_close(const Vec3& p) const { return distance_to_surface(p) < distance_; }
@@ -32,6 +33,7 @@ class SafetyChecker {
   const TriangleMesh& mesh_;
   const RayCaster& caster_;
   double distance_;
+  double step_;  // how far past a hit the next one is looked for
 };
 
 struct SamplingOptions {
