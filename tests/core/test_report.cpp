@@ -4,6 +4,7 @@
 
 #include "meshnbv/io/file_util.h"
 #include "meshnbv/planner.h"
+#include "meshnbv/options.h"
 #include "meshnbv/report.h"
 #include "meshnbv/synth/project.h"
 #include "meshnbv/visualize.h"
@@ -64,6 +65,11 @@ TEST(Report, PicturesShowTheQualityMapAndTheSuggestions) {
   EXPECT_NE(html.find("data:image/png;base64,iVBORw0KGgo"), std::string::npos);
   EXPECT_NE(html.find("<td class=l>nbv_2</td>"), std::string::npos);
   EXPECT_NE(html.find("Inputs, options and timings"), std::string::npos);
+  // The report names the measure and lists every option of both tables.
+  for (const auto& spec : pri_option_table())
+    EXPECT_NE(html.find("<td class=l>" + spec.name + "</td>"), std::string::npos) << spec.name;
+  for (const auto& spec : suggest_option_table())
+    EXPECT_NE(html.find("<td class=l>" + spec.name + "</td>"), std::string::npos) << spec.name;
 }
 
 TEST(Visualize, HistogramAndOverviewCamera) {

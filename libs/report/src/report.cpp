@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "meshnbv/error.h"
+#include "meshnbv/options.h"
 #include "meshnbv/io/file_util.h"
 #include "meshnbv/results.h"
 #include "meshnbv/raycaster.h"
@@ -205,26 +206,17 @@ ReportFiles write_report(const ReportInputs& in, const std::string& folder,
     const auto& s = sug.suggestions[std::size_t(i)];
     picture(s.label + ".png", s.label + " as its camera would see the mesh; worst faces in magenta");
   }
-  h << "</div>\n<h2>Inputs, options and timings</h2>\n<table><tr><th class=l>PRI option</th><th class=l>value</th></tr>"
-    << "<tr><td class=l>measure</td><td class=l>" << measure_name(in.pri_options.measure) << "</td></tr>"
-    << "<tr><td class=l>samples_per_side</td><td class=l>" << in.pri_options.samples_per_side << "</td></tr>"
-    << "<tr><td class=l>max_views_per_face</td><td class=l>" << in.pri_options.max_views_per_face << "</td></tr>"
-    << "<tr><td class=l>max_incidence_angle</td><td class=l>" << in.pri_options.max_incidence_angle << "</td></tr>"
-    << "<tr><td class=l>edge_margin</td><td class=l>" << in.pri_options.edge_margin << "</td></tr>"
-    << "<tr><td class=l>check_interior_occlusion</td><td class=l>" << (in.pri_options.check_interior_occlusion ? "true" : "false") << "</td></tr>"
-    << "</table>\n<table><tr><th class=l>suggestion option</th><th class=l>value</th></tr>";
-  const SuggestOptions& so = in.suggest_options;
-  h << "<tr><td class=l>candidates</td><td class=l>" << candidate_mode_name(so.mode) << "</td></tr>"
-    << "<tr><td class=l>top</td><td class=l>" << so.top << "</td></tr>"
-    << "<tr><td class=l>worst</td><td class=l>" << so.worst_k << "</td></tr>"
-    << "<tr><td class=l>weights</td><td class=l>" << so.energy.weights[0] << ", " << so.energy.weights[1] << ", "
-    << so.energy.weights[2] << ", " << so.energy.weights[3] << "</td></tr>"
-    << "<tr><td class=l>penalty</td><td class=l>" << so.energy.penalty << "</td></tr>"
-    << "<tr><td class=l>parallax_delta</td><td class=l>" << so.energy.parallax_delta << "</td></tr>"
-    << "<tr><td class=l>incidence_mu / sigma</td><td class=l>" << so.energy.incidence_mu << " / "
-    << so.energy.incidence_sigma << "</td></tr>"
-    << "<tr><td class=l>safety_distance</td><td class=l>" << so.safety_distance << "</td></tr>"
-    << "<tr><td class=l>seed</td><td class=l>" << so.sampling.seed << "</td></tr></table>\n";
+  // Every option of the two tables, under its one name (options.h).
+  auto option_rows = [&h](const char* what, const auto& options, const auto& table) {
+    h << "<table><tr><th class=l>" << what << "</th><th class=l>value</th></tr>";
+    for (const auto& spec : table)
+      h << "<tr><td class=l>" << html_escape(spec.name) << "</td><td class=l>"
+        << html_escape(option_value_text(spec.get(options))) << "</td></tr>";
+    h << "</table>\n";
+  };
+  h << "</div>\n<h2>Inputs, options and timings</h2>\n";
+  option_rows("PRI option", in.pri_options, pri_option_table());
+  option_rows("suggestion option", in.suggest_options, suggest_option_table());
   h << "<table><tr><th class=l>step</th><th>seconds</th></tr>";
   for (const auto& [step, sec] : in.timings) h << "<tr><td class=l>" << html_escape(step) << "</td><td>" << fixed(sec) << "</td></tr>";
   h << "</table>\n<table><tr><th class=l>file</th><th class=l>what</th></tr>";
