@@ -51,8 +51,13 @@ def extreme_outcomes(build):
     for r in rows:
         codes[r[1]] = codes.get(r[1], 0) + 1
     ms = sorted(int(r[2]) for r in rows)
+    by_command = {}  # the first word of the label is the subcommand
+    for r in rows:
+        c = by_command.setdefault(r[0].split(" ")[0], {"runs": 0, "ms": 0})
+        c["runs"] += 1
+        c["ms"] += int(r[2])
     return {"runs": len(rows), "exit_codes": codes, "succeeded": codes.get("0", 0),
-            "slowest_run_ms": ms[-1], "sum_of_run_ms": sum(ms)}
+            "slowest_run_ms": ms[-1], "sum_of_run_ms": sum(ms), "by_command": by_command}
 
 
 def synth_city(meshnbv, edge_length):
