@@ -11,8 +11,8 @@
 # metrics at 7 views side by side). The dataset and COLMAP's cache go to
 # $MESHNBV_EVAL_WORK (default ../eval-work beside the repository), shared
 # with bench/eval/run.sh. Needs colmap. About 2 minutes on 2 cores with an
-# empty cache (rendering the dataset, COLMAP's features and matches), 20 s
-# with the cache.
+# empty cache (rendering the dataset, COLMAP's features and matches;
+# `wall_seconds` in summary.json).
 set -euo pipefail
 ROOT=$(cd "$(dirname "$0")/../.." && pwd)
 BUILD=${1:-$ROOT/build}
