@@ -9,7 +9,7 @@
 # Results (committed): bench/results/eval/<dataset>/<run>/{loop.json,
 # steps.csv, console.txt, meshes/ (last step, PLY + two pictures)},
 # <dataset>/{reference.ply, reference_[ab].png, curves.png, table.md},
-# results.md. COLMAP caches and the synthetic datasets
+# results.md, summary.json (bench/eval/summary.py). COLMAP caches and the synthetic datasets
 # go to $MESHNBV_EVAL_WORK (default ../eval-work beside the repository:
 # large, never committed). Needs colmap and python3-matplotlib.
 # About 26 minutes on 2 cores from scratch (COLMAP's matching, once per dataset, 7 of them).
@@ -80,3 +80,4 @@ for scene in building fortress; do
 done
 
 /usr/bin/python3 "$ROOT/bench/eval/report.py" "$RESULTS"
+/usr/bin/python3 "$ROOT/bench/eval/summary.py" "$RESULTS"
