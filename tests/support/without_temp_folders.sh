@@ -7,7 +7,10 @@
 #   to FOLDER, made read-only (0555).
 # - Where a private mount namespace is allowed (unshare -m; root on the CI
 #   machines), /tmp and /var/tmp are also read-only for the command (bind
-#   mounts visible to it only), so a hard-coded /tmp fails too.
+#   mounts visible to it only), so a hard-coded /tmp fails too. The build
+#   tree the test runs in (the nearest folder above the working directory
+#   that holds CMakeCache.txt, else the working directory) stays writable
+#   even when it lies under /tmp, as a clean clone's may.
 # - Root ignores permission bits, so as root the command runs without
 #   CAP_DAC_OVERRIDE, CAP_DAC_READ_SEARCH and CAP_FOWNER (setpriv).
 # Before the command starts, writes into FOLDER (and /tmp when it was made
@@ -21,8 +24,17 @@ if [ -z "${MESHNBV_IN_TMP_NAMESPACE:-}" ]; then
 fi
 if [ -z "${MESHNBV_IN_TMP_NAMESPACE:-}" ] && unshare -m true 2> /dev/null; then
   export MESHNBV_IN_TMP_NAMESPACE=1
+  build=$PWD
+  while [ "$build" != / ] && [ ! -f "$build/CMakeCache.txt" ]; do build=$(dirname "$build"); done
+  [ -f "$build/CMakeCache.txt" ] || build=$PWD
+  export MESHNBV_KEEP_WRITABLE=$build
+  # The build tree is bound onto itself after /tmp is made read-only: the new
+  # mount is writable (a bind mount has its own flags).
   exec unshare -m --propagation private -- bash -c \
-    'mount --bind -o ro /tmp /tmp && mount --bind -o ro /var/tmp /var/tmp && exec "$0" "$@"' "$0" "$@"
+    'mount --bind -o ro /tmp /tmp && mount --bind -o ro /var/tmp /var/tmp &&
+     case "$MESHNBV_KEEP_WRITABLE" in /tmp/*|/var/tmp/*) mount --bind "$MESHNBV_KEEP_WRITABLE" "$MESHNBV_KEEP_WRITABLE" &&
+       mount -o remount,bind,rw "$MESHNBV_KEEP_WRITABLE";; esac &&
+     exec "$0" "$@"' "$0" "$@"
 fi
 folder=$1
 shift
