@@ -50,23 +50,18 @@ std::string join_metrics(const eval::EvaluationResult& m) {
   return ss.str();
 }
 
-}  // namespace
+struct LoopArgs {
+  std::string dataset, out, cache, strategy = "nbv", mode = "given";
+  OptionFlags flags;
+  std::string bootstrap_views, thresholds, percentiles = "80,90,99", mesher = "delaunay",
+                                           labelling = "graphcut", facet_support = "any";
+  eval::LoopOptions options;
+  bool overwrite = false, quiet = false;
+};
 
-void add_loop_command(CLI::App& app) {
-  struct Args {
-    std::string dataset, out, cache, strategy = "nbv", mode = "given";
-    OptionFlags flags;
-    std::string bootstrap_views, thresholds, percentiles = "80,90,99", mesher = "delaunay",
-                                             labelling = "graphcut", facet_support = "any";
-    eval::LoopOptions options;
-    bool overwrite = false, quiet = false;
-  };
-  auto a = std::make_shared<Args>();
-  CLI::App* cmd = app.add_subcommand(
-      "loop",
-      "The paper's experiment: bootstrap with a few views, then repeatedly reconstruct (COLMAP "
-      "sparse points with the known poses + a Delaunay visibility mesher), measure accuracy and "
-      "completeness, and add the view a strategy chooses");
+// The dataset and how views are chosen from it (the nbv strategy with
+// every PRI and suggestion option).
+void add_selection_options(CLI::App* cmd, LoopArgs* a) {
   cmd->add_option("dataset", a->dataset,
                   "Calibrated images to choose from (Middlebury folder, COLMAP model, .mlp, "
                   ".json) or a folder made by `meshnbv synth` (ground truth; new poses rendered)")
@@ -98,6 +93,10 @@ void add_loop_command(CLI::App& app) {
   cmd->add_option("--coverage-min-views", a->options.coverage_min_views,
                   "coverage: faces seen by fewer selected views count as uncovered")
       ->capture_default_str();
+}
+
+// The reconstruction backend: COLMAP's sparse points, then the mesher.
+void add_reconstruction_options(CLI::App* cmd, LoopArgs* a) {
   cmd->add_option("--max-point-error", a->options.max_point_error,
                   "Sparse points with a larger reprojection error (pixels) are not meshed")
       ->capture_default_str();
@@ -140,6 +139,10 @@ void add_loop_command(CLI::App& app) {
       ->default_str("true");
   cmd->add_option("--colmap-binary", a->options.colmap.executable, "COLMAP executable")
       ->capture_default_str();
+}
+
+// The metrics and what is written.
+void add_output_options(CLI::App* cmd, LoopArgs* a) {
   cmd->add_option("--thresholds", a->thresholds,
                   "Completeness thresholds in scene units (default: 0.00075,0.00125,0.00175 for "
                   "real data; 0.5%,1%,2% of the truth's diagonal for synthetic scenes)");
@@ -156,74 +159,102 @@ void add_loop_command(CLI::App& app) {
   cmd->add_flag("--keep-work", a->options.keep_work, "Keep COLMAP's per-step models in <out>/work");
   cmd->add_flag("--overwrite", a->overwrite, "Write into an output folder holding results");
   cmd->add_flag("--quiet", a->quiet, "No progress output");
-  cmd->callback([a]() {
-    eval::LoopOptions& o = a->options;
-    o.strategy = eval::parse_strategy(a->strategy);
-    a->flags.apply();
-    o.nbv_candidates = parse_candidate_mode(a->mode);
-    o.suggest.threads = o.pri.threads;
-    o.seed = o.suggest.sampling.seed;
-    o.mesher = eval::parse_mesher(a->mesher);
-    o.delaunay.labelling = eval::parse_labelling(a->labelling);
-    o.delaunay.facet_support = eval::parse_facet_support(a->facet_support);
-    if (!a->bootstrap_views.empty()) {
-      o.bootstrap_views.clear();
-      for (double x : parse_numbers(a->bootstrap_views, "--bootstrap-views")) {
-        if (x != std::floor(x) || x < 0 || x > 1e6)
-          throw Error("--bootstrap-views: indices must be whole numbers in [0, 1000000], got '" +
-                      a->bootstrap_views + "'");
-        o.bootstrap_views.push_back(int(x));
-      }
-    }
-    if (!a->thresholds.empty()) o.thresholds = parse_numbers(a->thresholds, "--thresholds");
-    o.evaluation.percentiles = parse_numbers(a->percentiles, "--percentiles");
-    o.out_dir = a->out;
-    o.cache_dir = a->cache;
-    o.check();
-    o.evaluation.thresholds = o.thresholds.empty() ? o.evaluation.thresholds : o.thresholds;
-    o.evaluation.check();
-    io::check_can_write_folder(a->out);
-    if (!a->cache.empty()) io::check_can_write_folder(a->cache);
-    std::error_code ec;
-    if (fs::exists(fs::path(a->out) / "loop.json", ec) && !a->overwrite)
-      throw Error("output folder holds results of a loop; pass --overwrite to replace them", a->out);
-    if (!eval::colmap_available(o.colmap.executable))
-      throw Error("COLMAP not found ('" + o.colmap.executable +
-                  " help' failed): install Debian's colmap package or pass --colmap");
-    // Replacing results: what an earlier run left must not mix with the new ones.
-    for (const char* sub : {"meshes", "images", "work"}) fs::remove_all(fs::path(a->out) / sub);
-    fs::create_directories(a->out);
-    const std::string cache = a->cache.empty() ? (fs::path(a->out) / "cache").string() : a->cache;
-    ProgressBar bar(a->quiet);
-    const eval::Dataset dataset = eval::load_dataset(a->dataset, cache, bar.callback());
-    bar.finish();
-    if (!a->quiet)
-      std::cout << "dataset: " << dataset.views.size() << " views" << (dataset.synthetic ? " (synthetic)" : "")
-                << "; strategy " << a->strategy << "\n";
-    ProgressBar loop_bar(true);
-    const eval::LoopResult r = eval::run_loop(
-        dataset, o, loop_bar.callback(), [&](const eval::StepRecord& s) {
-          std::cout << "step " << s.step << ": " << s.views.size() << " views";
-          if (!s.added.empty()) std::cout << " (+" << s.added << ", " << s.chosen_by << ")";
-          std::cout << ", " << s.points << " points, " << s.faces << " faces; "
-                    << join_metrics(s.metrics) << "; " << std::setprecision(3)
-                    << s.seconds_reconstruct + s.seconds_pri + s.seconds_choose + s.seconds_evaluate
-                    << " s\n"
-                    << std::flush;
-        });
-    std::cout << "reference: " << r.reference << "\n";
-    std::cout << "results: " << (fs::path(a->out) / "steps.csv").string() << ", "
-              << (fs::path(a->out) / "loop.json").string() << " (" << std::setprecision(4) << r.seconds
-              << " s)\n";
-  });
+}
 
-  // meshnbv evaluate
-  struct EvalArgs {
-    std::string recon, reference, json, thresholds = "0.00075,0.00125,0.00175",
-                                        percentiles = "80,90,99";
-    eval::EvaluationOptions options;
-    bool overwrite = false;
-  };
+// The parsed arguments into a->options, checked.
+void finish_loop_options(LoopArgs* a) {
+  eval::LoopOptions& o = a->options;
+  o.strategy = eval::parse_strategy(a->strategy);
+  a->flags.apply();
+  o.nbv_candidates = parse_candidate_mode(a->mode);
+  o.suggest.threads = o.pri.threads;
+  o.seed = o.suggest.sampling.seed;
+  o.mesher = eval::parse_mesher(a->mesher);
+  o.delaunay.labelling = eval::parse_labelling(a->labelling);
+  o.delaunay.facet_support = eval::parse_facet_support(a->facet_support);
+  if (!a->bootstrap_views.empty()) {
+    o.bootstrap_views.clear();
+    for (double x : parse_numbers(a->bootstrap_views, "--bootstrap-views")) {
+      if (x != std::floor(x) || x < 0 || x > 1e6)
+        throw Error("--bootstrap-views: indices must be whole numbers in [0, 1000000], got '" +
+                    a->bootstrap_views + "'");
+      o.bootstrap_views.push_back(int(x));
+    }
+  }
+  if (!a->thresholds.empty()) o.thresholds = parse_numbers(a->thresholds, "--thresholds");
+  o.evaluation.percentiles = parse_numbers(a->percentiles, "--percentiles");
+  o.out_dir = a->out;
+  o.cache_dir = a->cache;
+  o.check();
+  o.evaluation.thresholds = o.thresholds.empty() ? o.evaluation.thresholds : o.thresholds;
+  o.evaluation.check();
+}
+
+void run_loop_command(const LoopArgs& a) {
+  const eval::LoopOptions& o = a.options;
+  io::check_can_write_folder(a.out);
+  if (!a.cache.empty()) io::check_can_write_folder(a.cache);
+  std::error_code ec;
+  if (fs::exists(fs::path(a.out) / "loop.json", ec) && !a.overwrite)
+    throw Error("output folder holds results of a loop; pass --overwrite to replace them", a.out);
+  if (!eval::colmap_available(o.colmap.executable))
+    throw Error("COLMAP not found ('" + o.colmap.executable +
+                " help' failed): install Debian's colmap package or pass --colmap");
+  // Replacing results: what an earlier run left must not mix with the new ones.
+  for (const char* sub : {"meshes", "images", "work"}) fs::remove_all(fs::path(a.out) / sub);
+  fs::create_directories(a.out);
+  const std::string cache = a.cache.empty() ? (fs::path(a.out) / "cache").string() : a.cache;
+  ProgressBar bar(a.quiet);
+  const eval::Dataset dataset = eval::load_dataset(a.dataset, cache, bar.callback());
+  bar.finish();
+  if (!a.quiet)
+    std::cout << "dataset: " << dataset.views.size() << " views" << (dataset.synthetic ? " (synthetic)" : "")
+              << "; strategy " << a.strategy << "\n";
+  ProgressBar loop_bar(true);
+  const eval::LoopResult r = eval::run_loop(
+      dataset, o, loop_bar.callback(), [&](const eval::StepRecord& s) {
+        std::cout << "step " << s.step << ": " << s.views.size() << " views";
+        if (!s.added.empty()) std::cout << " (+" << s.added << ", " << s.chosen_by << ")";
+        std::cout << ", " << s.points << " points, " << s.faces << " faces; "
+                  << join_metrics(s.metrics) << "; " << std::setprecision(3)
+                  << s.seconds_reconstruct + s.seconds_pri + s.seconds_choose + s.seconds_evaluate
+                  << " s\n"
+                  << std::flush;
+      });
+  std::cout << "reference: " << r.reference << "\n";
+  std::cout << "results: " << (fs::path(a.out) / "steps.csv").string() << ", "
+            << (fs::path(a.out) / "loop.json").string() << " (" << std::setprecision(4) << r.seconds
+            << " s)\n";
+}
+
+struct EvalArgs {
+  std::string recon, reference, json, thresholds = "0.00075,0.00125,0.00175",
+                                      percentiles = "80,90,99";
+  eval::EvaluationOptions options;
+  bool overwrite = false;
+};
+
+nlohmann::json evaluation_json(const EvalArgs& e, const eval::EvaluationResult& r) {
+  nlohmann::json j;
+  j["format"] = "meshnbv-evaluation";
+  j["reconstruction"] = e.recon;
+  j["reference"] = e.reference;
+  nlohmann::json acc = nlohmann::json::array(), comp = nlohmann::json::array();
+  for (const auto& [p, v] : r.accuracy)
+    acc.push_back({{"percentile", p}, {"distance", std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr)}});
+  for (const auto& [t, v] : r.completeness) comp.push_back({{"threshold", t}, {"share", v}});
+  j["accuracy"] = acc;
+  j["completeness"] = comp;
+  j["mean_accuracy"] = std::isfinite(r.mean_accuracy) ? nlohmann::json(r.mean_accuracy) : nlohmann::json(nullptr);
+  j["samples"] = {{"reconstruction", r.reconstruction_samples},
+                  {"reference", r.reference_samples},
+                  {"spacing", r.sample_spacing}};
+  j["area"] = {{"reconstruction", r.reconstruction_area}, {"reference", r.reference_area}};
+  return j;
+}
+
+// meshnbv evaluate
+void add_evaluate_command(CLI::App& app) {
   auto e = std::make_shared<EvalArgs>();
   CLI::App* ev = app.add_subcommand(
       "evaluate", "Middlebury-style accuracy (distance of the reconstruction to the reference at "
@@ -250,25 +281,30 @@ void add_loop_command(CLI::App& app) {
               << "samples: " << r.reconstruction_samples << " reconstruction, " << r.reference_samples
               << " reference, spacing " << r.sample_spacing << "\n";
     if (!e->json.empty()) {
-      nlohmann::json j;
-      j["format"] = "meshnbv-evaluation";
-      j["reconstruction"] = e->recon;
-      j["reference"] = e->reference;
-      nlohmann::json acc = nlohmann::json::array(), comp = nlohmann::json::array();
-      for (const auto& [p, v] : r.accuracy)
-        acc.push_back({{"percentile", p}, {"distance", std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr)}});
-      for (const auto& [t, v] : r.completeness) comp.push_back({{"threshold", t}, {"share", v}});
-      j["accuracy"] = acc;
-      j["completeness"] = comp;
-      j["mean_accuracy"] = std::isfinite(r.mean_accuracy) ? nlohmann::json(r.mean_accuracy) : nlohmann::json(nullptr);
-      j["samples"] = {{"reconstruction", r.reconstruction_samples},
-                      {"reference", r.reference_samples},
-                      {"spacing", r.sample_spacing}};
-      j["area"] = {{"reconstruction", r.reconstruction_area}, {"reference", r.reference_area}};
+      const nlohmann::json j = evaluation_json(*e, r);
       io::write_atomically(e->json, [&](std::ostream& out) { out << j.dump(2) << "\n"; }, e->overwrite);
       std::cout << "json: " << e->json << "\n";
     }
   });
+}
+
+}  // namespace
+
+void add_loop_command(CLI::App& app) {
+  auto a = std::make_shared<LoopArgs>();
+  CLI::App* cmd = app.add_subcommand(
+      "loop",
+      "The paper's experiment: bootstrap with a few views, then repeatedly reconstruct (COLMAP "
+      "sparse points with the known poses + a Delaunay visibility mesher), measure accuracy and "
+      "completeness, and add the view a strategy chooses");
+  add_selection_options(cmd, a.get());
+  add_reconstruction_options(cmd, a.get());
+  add_output_options(cmd, a.get());
+  cmd->callback([a]() {
+    finish_loop_options(a.get());
+    run_loop_command(*a);
+  });
+  add_evaluate_command(app);
 }
 
 }  // namespace meshnbv::cli

@@ -222,6 +222,123 @@ vtkSmartPointer<vtkImageData> ToViewBlock(const meshnbv::View& view, const meshn
   return block;
 }
 
+namespace
+{
+
+// The leaf's name in its parent's metadata, or "".
+std::string LeafName(vtkDataObjectTreeIterator* it)
+{
+  if (it->HasCurrentMetaData() && it->GetCurrentMetaData()->Has(vtkCompositeDataSet::NAME()))
+  {
+    return it->GetCurrentMetaData()->Get(vtkCompositeDataSet::NAME());
+  }
+  return std::string();
+}
+
+// The camera of a view block's field data; `what` names the block in errors.
+meshnbv::PinholeCamera CameraOf(vtkFieldData* fd, const std::string& what)
+{
+  double size[2], k[9], r[9], t[3];
+  std::string missing;
+  if (!GetTuple(fd, ImageSizeName, 2, size))
+  {
+    missing += " ImageSize";
+  }
+  if (!GetTuple(fd, KName, 9, k))
+  {
+    missing += " K";
+  }
+  if (!GetTuple(fd, RName, 9, r))
+  {
+    missing += " R";
+  }
+  if (!GetTuple(fd, TName, 3, t))
+  {
+    missing += " t";
+  }
+  if (!missing.empty())
+  {
+    throw Error(what + ": no camera data (field arrays ImageSize (2), K (9), R (9) and t (3) are "
+                       "needed; missing or malformed:" + missing + ")");
+  }
+  if (k[1] != 0.0)
+  {
+    throw Error(what + ": K has a skew term (K[0][1] = " + std::to_string(k[1]) +
+      "); MeshNBV cameras have none");
+  }
+  meshnbv::PinholeCamera c;
+  c.width = static_cast<int>(size[0]);
+  c.height = static_cast<int>(size[1]);
+  c.fx = k[0];
+  c.cx = k[2];
+  c.fy = k[4];
+  c.cy = k[5];
+  for (int i = 0; i < 9; ++i)
+  {
+    c.R(i / 3, i % 3) = r[i];
+  }
+  c.t = meshnbv::Vec3(t[0], t[1], t[2]);
+  double distortion[2];
+  if (GetTuple(fd, DistortionName, 2, distortion))
+  {
+    c.k1 = distortion[0];
+    c.k2 = distortion[1];
+  }
+  return c;
+}
+
+// Whether the block carries pixels; throws for a type ToImage does not convert.
+bool HasPixels(vtkImageData* image, const std::string& what)
+{
+  vtkDataArray* pixels = PixelArray(image);
+  if (!pixels)
+  {
+    return false;
+  }
+  const int nc = pixels->GetNumberOfComponents();
+  const int type = pixels->GetDataType();
+  if ((type != VTK_UNSIGNED_CHAR && type != VTK_UNSIGNED_SHORT) || nc < 1 || nc > 4)
+  {
+    throw Error(what + ": pixels must be unsigned char or unsigned short with 1 to 4 "
+                       "components, got " + std::string(pixels->GetDataTypeAsString()) +
+      " with " + std::to_string(nc) +
+      " (convert them first, e.g. vtkImageShiftScale with SetOutputScalarTypeToUnsignedChar "
+      "and the scale that maps their range to 0..255)");
+  }
+  return true;
+}
+
+// Leaf `index` of the views input, named `name` (may be empty).
+ViewBlock ReadViewBlock(vtkDataObject* leaf, std::size_t index, const std::string& name)
+{
+  const std::string what =
+    "view " + std::to_string(index) + (name.empty() ? "" : " ('" + name + "')");
+  auto* image = vtkImageData::SafeDownCast(leaf);
+  if (!image)
+  {
+    throw Error(what + ": no camera data (the block is " +
+      (leaf ? std::string("a ") + leaf->GetClassName() : std::string("empty")) +
+      ", not a vtkImageData with ImageSize, K, R and t in its field data)");
+  }
+  vtkFieldData* fd = image->GetFieldData();
+  ViewBlock v;
+  v.block = image;
+  v.view.camera = CameraOf(fd, what);
+  double used = 1;
+  GetTuple(fd, UsedName, 1, &used);
+  v.view.used = used != 0;
+  v.view.label = GetString(fd, LabelName);
+  if (v.view.label.empty())
+  {
+    v.view.label = name.empty() ? "view_" + std::to_string(index) : name;
+  }
+  v.view.image_path = GetString(fd, ImagePathName);
+  v.hasPixels = HasPixels(image, what);
+  return v;
+}
+
+} // namespace
+
 std::vector<ViewBlock> ExtractViews(vtkDataObject* views)
 {
   auto* tree = vtkDataObjectTree::SafeDownCast(views);
@@ -238,94 +355,7 @@ std::vector<ViewBlock> ExtractViews(vtkDataObject* views)
   it->TraverseSubTreeOn();
   for (it->InitTraversal(); !it->IsDoneWithTraversal(); it->GoToNextItem())
   {
-    std::string name;
-    if (it->HasCurrentMetaData() && it->GetCurrentMetaData()->Has(vtkCompositeDataSet::NAME()))
-    {
-      name = it->GetCurrentMetaData()->Get(vtkCompositeDataSet::NAME());
-    }
-    const std::string what =
-      "view " + std::to_string(out.size()) + (name.empty() ? "" : " ('" + name + "')");
-    auto* image = vtkImageData::SafeDownCast(it->GetCurrentDataObject());
-    if (!image)
-    {
-      throw Error(what + ": no camera data (the block is " +
-        (it->GetCurrentDataObject() ? std::string("a ") + it->GetCurrentDataObject()->GetClassName()
-                                    : std::string("empty")) +
-        ", not a vtkImageData with ImageSize, K, R and t in its field data)");
-    }
-    vtkFieldData* fd = image->GetFieldData();
-    double size[2], k[9], r[9], t[3];
-    std::string missing;
-    if (!GetTuple(fd, ImageSizeName, 2, size))
-    {
-      missing += " ImageSize";
-    }
-    if (!GetTuple(fd, KName, 9, k))
-    {
-      missing += " K";
-    }
-    if (!GetTuple(fd, RName, 9, r))
-    {
-      missing += " R";
-    }
-    if (!GetTuple(fd, TName, 3, t))
-    {
-      missing += " t";
-    }
-    if (!missing.empty())
-    {
-      throw Error(what + ": no camera data (field arrays ImageSize (2), K (9), R (9) and t (3) are "
-                         "needed; missing or malformed:" + missing + ")");
-    }
-    if (k[1] != 0.0)
-    {
-      throw Error(what + ": K has a skew term (K[0][1] = " + std::to_string(k[1]) +
-        "); MeshNBV cameras have none");
-    }
-    ViewBlock v;
-    v.block = image;
-    meshnbv::PinholeCamera& c = v.view.camera;
-    c.width = static_cast<int>(size[0]);
-    c.height = static_cast<int>(size[1]);
-    c.fx = k[0];
-    c.cx = k[2];
-    c.fy = k[4];
-    c.cy = k[5];
-    for (int i = 0; i < 9; ++i)
-    {
-      c.R(i / 3, i % 3) = r[i];
-    }
-    c.t = meshnbv::Vec3(t[0], t[1], t[2]);
-    double distortion[2];
-    if (GetTuple(fd, DistortionName, 2, distortion))
-    {
-      c.k1 = distortion[0];
-      c.k2 = distortion[1];
-    }
-    double used = 1;
-    GetTuple(fd, UsedName, 1, &used);
-    v.view.used = used != 0;
-    v.view.label = GetString(fd, LabelName);
-    if (v.view.label.empty())
-    {
-      v.view.label = name.empty() ? "view_" + std::to_string(out.size()) : name;
-    }
-    v.view.image_path = GetString(fd, ImagePathName);
-    if (vtkDataArray* pixels = PixelArray(image))
-    {
-      const int nc = pixels->GetNumberOfComponents();
-      const int type = pixels->GetDataType();
-      if ((type != VTK_UNSIGNED_CHAR && type != VTK_UNSIGNED_SHORT) || nc < 1 || nc > 4)
-      {
-        throw Error(what + ": pixels must be unsigned char or unsigned short with 1 to 4 "
-                           "components, got " + std::string(pixels->GetDataTypeAsString()) +
-          " with " + std::to_string(nc) +
-          " (convert them first, e.g. vtkImageShiftScale with SetOutputScalarTypeToUnsignedChar "
-          "and the scale that maps their range to 0..255)");
-      }
-      v.hasPixels = true;
-    }
-    out.push_back(std::move(v));
+    out.push_back(ReadViewBlock(it->GetCurrentDataObject(), out.size(), LeafName(it)));
   }
   return out;
 }

@@ -46,14 +46,15 @@ struct Scored {
   std::size_t given_index = std::size_t(-1);
 };
 
+bool ranked_before(const Scored& a, const Scored& b) { return a.energy.total > b.energy.total; }
+
 // Energies in parallel; stable order: best energy first, ties by input order.
 std::vector<Scored> score(const std::vector<Scored>& in, const EnergyEvaluator& e) {
   std::vector<Scored> out = in;
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, out.size()), [&](const auto& r) {
     for (std::size_t i = r.begin(); i < r.end(); ++i) out[i].energy = e.evaluate(out[i].camera);
   });
-  std::stable_sort(out.begin(), out.end(),
-                   [](const Scored& a, const Scored& b) { return a.energy.total > b.energy.total; });
+  std::stable_sort(out.begin(), out.end(), ranked_before);
   return out;
 }
 
@@ -61,6 +62,113 @@ Vec3 look_at_point(const PinholeCamera& cam, const RayCaster& caster, const Vec3
   RayHit hit;
   if (caster.intersect(cam.center(), cam.forward(), &hit)) return cam.center() + hit.distance * cam.forward();
   return cam.center() + cam.forward() * (region_centroid - cam.center()).norm();
+}
+
+std::vector<PinholeCamera> existing_cameras(const Scene& scene) {
+  std::vector<PinholeCamera> cams;
+  for (const auto& v : scene.views)
+    if (v.has_image() && v.used) cams.push_back(v.camera);
+  if (cams.empty())
+    throw Error("no existing view (with an image) to take distances, intrinsics and parallax from");
+  return cams;
+}
+
+// Given mode's candidates: `given`, or else the scene's views without an
+// image or marked unused.
+std::vector<Scored> given_pool(const Scene& scene, const std::vector<View>& given) {
+  const std::vector<View>* src = &given;
+  std::vector<View> own;
+  if (given.empty()) {
+    for (const auto& v : scene.views)
+      if (!v.has_image() || !v.used) own.push_back(v);
+    src = &own;
+  }
+  std::vector<Scored> pool;
+  for (std::size_t i = 0; i < src->size(); ++i) {
+    (*src)[i].camera.check("candidate '" + (*src)[i].label + "'");
+    pool.push_back({(*src)[i].camera, (*src)[i].label, {}, i});
+  }
+  if (pool.empty())
+    throw Error("given mode: no candidate views (no view without image or marked unused, and "
+                "no --candidates-from scene)");
+  return pool;
+}
+
+// What every pick of suggest_views shares, built once inside its arena.
+struct PlannerContext {
+  const TriangleMesh& mesh;
+  const SuggestOptions& o;
+  const RayCaster& caster;
+  const SafetyChecker& safety;
+  PinholeCamera intrinsics;  // of the sampled poses
+  Vec3 up;
+};
+
+// Poses sampled around the region, the spiral turned by the pick; the
+// counts go into `result`.
+std::vector<Scored> sampled_candidates(const PlannerContext& ctx, const WorstRegion& region,
+                                       double viewing_distance, int pick, SuggestResult* result) {
+  SamplingOptions so = ctx.o.sampling;
+  so.seed = ctx.o.sampling.seed + std::uint64_t(pick);
+  const CandidateSet set = sample_candidates(region, ctx.intrinsics, ctx.up, viewing_distance, ctx.safety, so);
+  result->candidates_generated += set.generated;
+  result->rejected_inside += set.rejected_inside;
+  result->rejected_too_close += set.rejected_too_close;
+  std::vector<Scored> candidates;
+  for (const auto& c : set.cameras) candidates.push_back({c, candidate_mode_name(CandidateMode::Sampled), {}});
+  if (candidates.empty())
+    throw Error("no candidate left: all " + std::to_string(result->candidates_generated) +
+                " sampled poses were inside the mesh or nearer than the safety distance (" +
+                std::to_string(ctx.safety.distance()) + ") to it");
+  return candidates;
+}
+
+// Refined mode: the best scored poses improved by the optimiser, ranked
+// with the others; the energy evaluations are added to `evaluated`.
+void add_refined(const PlannerContext& ctx, const EnergyEvaluator& energy, std::vector<Scored>* scored,
+                 std::size_t* evaluated) {
+  const std::size_t n = std::min<std::size_t>(std::size_t(ctx.o.refine_best), scored->size());
+  std::vector<Scored> refined(n);
+  std::vector<std::size_t> evaluations(n, 0);
+  tbb::parallel_for(std::size_t(0), n, [&](std::size_t i) {
+    refined[i] = (*scored)[i];
+    refined[i].camera =
+        refine_candidate((*scored)[i].camera, ctx.up, energy, ctx.safety, ctx.o.refine, &evaluations[i]);
+    refined[i].energy = energy.evaluate(refined[i].camera);
+    refined[i].label = candidate_mode_name(CandidateMode::Refined);
+  });
+  // The energy evaluations made: the optimiser's, plus the final pose's
+  // evaluation of each refined candidate.
+  for (std::size_t k : evaluations) *evaluated += k + 1;
+  scored->insert(scored->begin(), refined.begin(), refined.end());
+  std::stable_sort(scored->begin(), scored->end(), ranked_before);
+}
+
+Suggestion suggestion_of(const PlannerContext& ctx, const Scored& best, int pick, int region_index,
+                         const WorstRegion& region, const EnergyEvaluator& energy) {
+  Suggestion s;
+  s.rank = pick + 1;
+  s.label = "nbv_" + std::to_string(pick + 1);
+  s.source = best.label;
+  s.region = region_index;
+  s.camera = best.camera;
+  s.look_at = look_at_point(best.camera, ctx.caster, region.centroid);
+  s.energy = best.energy;
+  s.seen_faces = energy.seen_faces(best.camera);
+  return s;
+}
+
+// Marks the region's faces done and moves to the worst region of the
+// others; false when every observed face has been covered.
+bool next_region(const PlannerContext& ctx, const std::vector<float>& pri, std::vector<char>* done,
+                 WorstRegion* region) {
+  for (int f : region->faces) (*done)[std::size_t(f)] = 1;
+  try {
+    *region = worst_region(ctx.mesh, pri, ctx.o.worst_k, done);
+  } catch (const Error&) {
+    return false;
+  }
+  return true;
 }
 
 }  // namespace
@@ -73,29 +181,9 @@ SuggestResult suggest_views(const Scene& scene, const std::vector<float>& pri,
   const TriangleMesh& mesh = scene.mesh;
   mesh.validate(scene.mesh_path);
   if (mesh.empty()) throw Error("the mesh has no faces");
-  std::vector<PinholeCamera> existing_cams;
-  for (const auto& v : scene.views)
-    if (v.has_image() && v.used) existing_cams.push_back(v.camera);
-  if (existing_cams.empty())
-    throw Error("no existing view (with an image) to take distances, intrinsics and parallax from");
-
+  const std::vector<PinholeCamera> existing_cams = existing_cameras(scene);
   std::vector<Scored> pool;  // given candidates
-  if (o.mode == CandidateMode::Given) {
-    const std::vector<View>* src = &given;
-    std::vector<View> own;
-    if (given.empty()) {
-      for (const auto& v : scene.views)
-        if (!v.has_image() || !v.used) own.push_back(v);
-      src = &own;
-    }
-    for (std::size_t i = 0; i < src->size(); ++i) {
-      (*src)[i].camera.check("candidate '" + (*src)[i].label + "'");
-      pool.push_back({(*src)[i].camera, (*src)[i].label, {}, i});
-    }
-    if (pool.empty())
-      throw Error("given mode: no candidate views (no view without image or marked unused, and "
-                  "no --candidates-from scene)");
-  }
+  if (o.mode == CandidateMode::Given) pool = given_pool(scene, given);
 
   const int threads = o.threads > 0 ? o.threads : tbb::this_task_arena::max_concurrency();
   tbb::task_arena arena(threads);
@@ -104,8 +192,8 @@ SuggestResult suggest_views(const Scene& scene, const std::vector<float>& pri,
     const RayCaster caster(mesh);
     const double diag = mesh.bounding_box().diagonal();
     const SafetyChecker safety(mesh, caster, o.safety_distance * diag);
-    const PinholeCamera intr = most_common_intrinsics(existing_cams);
-    const Vec3 up = mean_up(existing_cams);
+    const PlannerContext ctx{mesh, o, caster, safety, most_common_intrinsics(existing_cams),
+                             mean_up(existing_cams)};
     std::vector<Vec3> existing;
     for (const auto& c : existing_cams) existing.push_back(c.center());
 
@@ -117,59 +205,21 @@ SuggestResult suggest_views(const Scene& scene, const std::vector<float>& pri,
 
     for (int pick = 0; pick < o.top; ++pick) {
       const EnergyEvaluator energy(mesh, caster, region, existing, o.energy);
-      std::vector<Scored> candidates;
-      if (o.mode == CandidateMode::Given) {
-        candidates = pool;
-      } else {
-        SamplingOptions so = o.sampling;
-        so.seed = o.sampling.seed + std::uint64_t(pick);
-        const CandidateSet set = sample_candidates(region, intr, up, viewing_distance, safety, so);
-        result.candidates_generated += set.generated;
-        result.rejected_inside += set.rejected_inside;
-        result.rejected_too_close += set.rejected_too_close;
-        for (const auto& c : set.cameras) candidates.push_back({c, candidate_mode_name(CandidateMode::Sampled), {}});
-      }
-      if (candidates.empty())
-        throw Error("no candidate left: all " + std::to_string(result.candidates_generated) +
-                    " sampled poses were inside the mesh or nearer than the safety distance (" +
-                    std::to_string(safety.distance()) + ") to it");
-      std::vector<Scored> scored = score(candidates, energy);
+      std::vector<Scored> scored =
+          o.mode == CandidateMode::Given
+              ? score(pool, energy)
+              : score(sampled_candidates(ctx, region, viewing_distance, pick, &result), energy);
       result.candidates_evaluated += scored.size();
-      if (o.mode == CandidateMode::Refined) {
-        const std::size_t n = std::min<std::size_t>(std::size_t(o.refine_best), scored.size());
-        std::vector<Scored> refined(n);
-        std::vector<std::size_t> evaluations(n, 0);
-        tbb::parallel_for(std::size_t(0), n, [&](std::size_t i) {
-          refined[i] = scored[i];
-          refined[i].camera =
-              refine_candidate(scored[i].camera, up, energy, safety, o.refine, &evaluations[i]);
-          refined[i].energy = energy.evaluate(refined[i].camera);
-          refined[i].label = candidate_mode_name(CandidateMode::Refined);
-        });
-        // The energy evaluations made: the optimiser's, plus the final
-        // pose's evaluation of each refined candidate.
-        for (std::size_t k : evaluations) result.candidates_evaluated += k + 1;
-        scored.insert(scored.begin(), refined.begin(), refined.end());
-        std::stable_sort(scored.begin(), scored.end(), [](const Scored& a, const Scored& b) {
-          return a.energy.total > b.energy.total;
-        });
-      }
+      if (o.mode == CandidateMode::Refined) add_refined(ctx, energy, &scored, &result.candidates_evaluated);
       if (pick == 0) {
         const std::size_t keep = o.mode == CandidateMode::Given ? scored.size() : std::min<std::size_t>(50, scored.size());
         for (std::size_t i = 0; i < keep; ++i)
           result.ranking.push_back({scored[i].label, scored[i].camera, scored[i].energy});
       }
       const Scored& best = scored.front();
-      Suggestion s;
-      s.rank = pick + 1;
-      s.label = "nbv_" + std::to_string(pick + 1);
-      s.source = best.label;
-      s.region = int(result.regions.size()) - 1;
-      s.camera = best.camera;
-      s.look_at = look_at_point(best.camera, caster, region.centroid);
-      s.energy = best.energy;
-      s.seen_faces = energy.seen_faces(best.camera);
-      result.suggestions.push_back(s);
+      result.suggestions.push_back(
+          suggestion_of(ctx, best, pick, int(result.regions.size()) - 1, region, energy));
+      const Suggestion& s = result.suggestions.back();
       report_progress(progress, double(pick + 1) / o.top, "suggest");
 
       // The pick now exists: parallax for later picks, out of the given pool.
@@ -182,12 +232,7 @@ SuggestResult suggest_views(const Scene& scene, const std::vector<float>& pri,
       if (o.mode == CandidateMode::Given && pool.empty()) break;
       region_seen.insert(s.seen_faces.begin(), s.seen_faces.end());
       if (region_seen.size() == region.faces.size()) {
-        for (int f : region.faces) done[std::size_t(f)] = 1;
-        try {
-          region = worst_region(mesh, pri, o.worst_k, &done);
-        } catch (const Error&) {
-          break;  // every observed face has been covered
-        }
+        if (!next_region(ctx, pri, &done, &region)) break;
         result.regions.push_back(region);
         region_seen.clear();
       }

@@ -187,159 +187,232 @@ PriViewSelection select_pri_views(const Scene& scene, const PriOptions& options,
   return s;
 }
 
+namespace {
+
+// Samples of face f's lattice: (r + 1)(r + 2) / 2 points.
+std::size_t lattice_points(int r) { return std::size_t(r + 1) * (r + 2) / 2; }
+
+// What every phase of compute_pri reads.
+struct PriInputs {
+  const Scene& scene;
+  const PriViewSelection& selection;
+  const PriOptions& options;
+  int channels;  // 3 with options.color, else 1 (luminance)
+};
+
+// Consecutive faces [begin, end) and the samples of each (face, view): the
+// slots of face f are consecutive, one per view of fv[f].views.
+struct SampleBlock {
+  std::size_t begin = 0, end = 0;
+  std::vector<std::size_t> offset;  // first float of face begin + j
+  std::unique_ptr<float[]> samples;
+  // Per view, the faces of the block that it sees and the slot of each.
+  std::vector<std::vector<std::pair<std::size_t, int>>> by_view;
+
+  float* slot(std::size_t f, std::size_t k, std::size_t floats_per_view) const {
+    return &samples[offset[f - begin] + k * floats_per_view];
+  }
+};
+
+// Faces from `begin` in a block whose sample storage stays under ~1 GB;
+// each block visits every view once (one image decoded and converted at a
+// time).
+SampleBlock plan_block(const PriInputs& in, std::size_t begin) {
+  const std::vector<PriFaceViews>& fv = in.selection.faces;
+  const std::size_t budget = std::size_t(256) << 20;  // floats
+  SampleBlock block;
+  block.begin = block.end = begin;
+  std::size_t floats = 0;
+  while (block.end < fv.size()) {
+    const std::size_t need =
+        lattice_points(fv[block.end].samples_per_side) * fv[block.end].views.size() * in.channels;
+    if (floats + need > budget && block.end > begin) break;
+    block.offset.push_back(floats);
+    floats += need;
+    ++block.end;
+  }
+  // Every slot is written by its view before it is read: no zero fill.
+  block.samples.reset(new float[floats]);
+  block.by_view.resize(in.selection.cameras.size());
+  for (std::size_t f = block.begin; f < block.end; ++f)
+    for (std::size_t k = 0; k < fv[f].views.size(); ++k)
+      block.by_view[std::size_t(fv[f].views[k])].emplace_back(f, int(k));
+  return block;
+}
+
+// One view's image plane and projection, as the lattice sampling uses them.
+struct ViewSampler {
+  const FloatImage& plane;
+  const PinholeCamera& cam;
+  int channels;
+  // Without distortion the projection of a lattice point is the same
+  // barycentric mix of the vertices' homogeneous projections: three matrix
+  // products per (face, view) instead of one per sample.
+  bool linear;
+  Mat3 KR;
+  Vec3 Kt;
+};
+
+// Samples face f's lattice in one view into `slot`; NaN in slot[0] when
+// the view is unusable there (a sample behind the camera or off the image).
+inline void sample_face(const TriangleMesh& mesh, std::size_t f, const PriFaceViews& fv,
+                        const ViewSampler& view, float* slot) {
+  const FloatImage& plane = view.plane;
+  const int channels = view.channels;
+  const bool linear = view.linear;
+  const int rs = fv.samples_per_side;
+  const Face& face = mesh.faces[f];
+  const Vec3 &v0 = mesh.vertices[face[0]], &v1 = mesh.vertices[face[1]], &v2 = mesh.vertices[face[2]];
+  // The lattice, contracted towards the centroid by the face's edge-margin
+  // factor (the same 3-D points in every view).
+  const double keep = 1.0 - fv.shrink;
+  const Vec3 g = (v0 + v1 + v2) / 3.0;
+  const Vec3 w0 = g + keep * (v0 - g), w1 = g + keep * (v1 - g), w2 = g + keep * (v2 - g);
+  const Vec3 h0 = view.KR * w0 + view.Kt, h1 = view.KR * w1 + view.Kt, h2 = view.KR * w2 + view.Kt;
+  bool ok = true;
+  if (linear && channels == 1) {
+    // Lattice point (a, b, c) with a + b + c = rs: along a row of constant
+    // a, the homogeneous projection moves by h1 - h2.
+    const Vec3 step = h1 - h2;
+    float* out = slot;
+    for (int a = 0; a <= rs && ok; ++a) {
+      Vec3 h = double(a) * h0 + double(rs - a) * h2;
+      for (int b = 0; b <= rs - a; ++b, ++out, h += step) {
+        if (!(h.z() > 0)) { ok = false; break; }
+        const double inv = 1.0 / h.z();
+        if (!plane.sample_gray(h.x() * inv, h.y() * inv, out)) { ok = false; break; }
+      }
+    }
+  } else {
+    std::size_t s = 0;
+    for (int a = 0; a <= rs && ok; ++a)
+      for (int b = 0; b <= rs - a && ok; ++b, ++s) {
+        const int c = rs - a - b;
+        float* out = slot + s * channels;
+        if (linear) {
+          const Vec3 h = double(a) * h0 + double(b) * h1 + double(c) * h2;
+          ok = h.z() > 0 && plane.sample(h.x() / h.z(), h.y() / h.z(), out);
+        } else {
+          const Vec3 X = (a * w0 + b * w1 + c * w2) / double(rs);
+          Vec2 px;
+          ok = view.cam.project(X, &px) && plane.sample(px.x(), px.y(), out);
+        }
+      }
+  }
+  if (!ok) slot[0] = std::numeric_limits<float>::quiet_NaN();  // view unusable here
+}
+
+// Camera i samples every face of the block that it sees.
+void sample_view(const PriInputs& in, const SampleBlock& block, std::size_t i) {
+  const std::vector<std::pair<std::size_t, int>>& faces = block.by_view[i];
+  if (faces.empty()) return;  // its image is not even decoded
+  const std::vector<PriFaceViews>& fv = in.selection.faces;
+  const auto image = in.scene.image(in.selection.image_views[i]);
+  const FloatImage plane =
+      in.options.color ? FloatImage::rgb_of(*image) : FloatImage::luminance_of(*image);
+  const PinholeCamera& cam = in.selection.cameras[i];
+  const ViewSampler view{plane, cam, in.channels, !cam.has_distortion(), cam.K() * cam.R, cam.K() * cam.t};
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, faces.size()), [&](const auto& r) {
+    for (std::size_t j = r.begin(); j < r.end(); ++j) {
+      const auto [f, k] = faces[j];
+      const std::size_t floats = lattice_points(fv[f].samples_per_side) * in.channels;
+      sample_face(in.scene.mesh, f, fv[f], view, block.slot(f, std::size_t(k), floats));
+    }
+  });
+}
+
+struct PairErrors {
+  double sum = 0;
+  std::size_t pairs = 0;  // pairs that count (NCC skips textureless ones)
+};
+
+// The error of every pair of a face's patches (n floats each); `stats` is
+// scratch space.
+PairErrors pair_errors(const std::vector<const float*>& patches, std::size_t n, const PriOptions& o,
+                       std::vector<PatchStats>* stats) {
+  PairErrors e;
+  if (o.measure == Measure::SSD) {
+    for (std::size_t a = 0; a < patches.size(); ++a)
+      for (std::size_t b = a + 1; b < patches.size(); ++b, ++e.pairs)
+        e.sum += ssd_error(patches[a], patches[b], n);
+    return e;
+  }
+  std::vector<PatchStats>& st = *stats;
+  st.clear();
+  for (const float* p : patches) st.push_back(patch_stats(p, n, o.textureless_variance));
+  for (std::size_t a = 0; a < patches.size(); ++a)
+    for (std::size_t b = a + 1; b < patches.size(); ++b) {
+      if (st[a].textureless || st[b].textureless) continue;
+      e.sum += ncc_from_stats(patches[a], st[a], patches[b], st[b], n);
+      ++e.pairs;
+    }
+  return e;
+}
+
+// PRI, views and status of every face of the block from its samples.
+void score_block(const PriInputs& in, const SampleBlock& block, PriResult* result) {
+  const std::vector<PriFaceViews>& fv = in.selection.faces;
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(block.begin, block.end), [&](const auto& r) {
+    std::vector<const float*> patches;
+    std::vector<PatchStats> stats;
+    for (std::size_t f = r.begin(); f < r.end(); ++f) {
+      const std::size_t n = lattice_points(fv[f].samples_per_side) * in.channels;
+      patches.clear();
+      for (std::size_t k = 0; k < fv[f].views.size(); ++k) {
+        const float* slot = block.slot(f, k, n);
+        if (!std::isnan(slot[0])) patches.push_back(slot);
+      }
+      result->pri_views[f] = int(patches.size());
+      if (patches.size() < 2) continue;  // unobserved
+      const PairErrors e = pair_errors(patches, n, in.options, &stats);
+      if (e.pairs == 0) {
+        result->status[f] = FaceStatus::Textureless;
+        continue;
+      }
+      result->pri[f] = float(e.sum / double(e.pairs));
+      result->status[f] = FaceStatus::Observed;
+    }
+  });
+}
+
+void count_statuses(PriResult* result) {
+  for (FaceStatus s : result->status) {
+    if (s == FaceStatus::Observed) ++result->observed;
+    else if (s == FaceStatus::Unobserved) ++result->unobserved;
+    else ++result->textureless;
+  }
+}
+
+}  // namespace
+
 PriResult compute_pri(const Scene& scene, const PriOptions& options,
                       const ProgressCallback& progress) {
   const auto start = std::chrono::steady_clock::now();
   const PriViewSelection selection = select_pri_views(scene, options, progress);
-  const TriangleMesh& mesh = scene.mesh;
-  const std::vector<std::size_t>& image_views = selection.image_views;
-  const std::vector<PinholeCamera>& cams = selection.cameras;
-  const std::vector<PriFaceViews>& fv = selection.faces;
-
-  const int threads = options.threads > 0 ? options.threads : tbb::this_task_arena::max_concurrency();
-  tbb::task_arena arena(threads);
+  const PriInputs in{scene, selection, options, options.color ? 3 : 1};
+  const std::size_t F = scene.mesh.num_faces();
+  const std::size_t views = selection.cameras.size();
   PriResult result;
-  const std::size_t F = mesh.num_faces();
   result.pri.assign(F, std::numeric_limits<float>::quiet_NaN());
   result.pri_views.assign(F, 0);
   result.status.assign(F, FaceStatus::Unobserved);
-  result.views_used = image_views.size();
-  const int channels = options.color ? 3 : 1;
+  result.views_used = selection.image_views.size();
 
+  const int threads = options.threads > 0 ? options.threads : tbb::this_task_arena::max_concurrency();
+  tbb::task_arena arena(threads);
   arena.execute([&] {
-    // Faces in blocks whose sample storage stays under ~1 GB; each block
-    // visits every view once (one image decoded and converted at a time).
-    const std::size_t budget = std::size_t(256) << 20;  // floats
-    std::size_t block_begin = 0;
-    while (block_begin < F) {
-      std::size_t block_end = block_begin, floats = 0;
-      std::vector<std::size_t> offset;
-      while (block_end < F) {
-        const std::size_t r = std::size_t(fv[block_end].samples_per_side);
-        const std::size_t need = (r + 1) * (r + 2) / 2 * fv[block_end].views.size() * channels;
-        if (floats + need > budget && block_end > block_begin) break;
-        offset.push_back(floats);
-        floats += need;
-        ++block_end;
-      }
-      // Every slot is written by its view before it is read: no zero fill.
-      const std::unique_ptr<float[]> samples(new float[floats]);
-      // Per view, the faces of the block that it sees and the slot of each.
-      std::vector<std::vector<std::pair<std::size_t, int>>> by_view(cams.size());
-      for (std::size_t f = block_begin; f < block_end; ++f)
-        for (std::size_t k = 0; k < fv[f].views.size(); ++k)
-          by_view[std::size_t(fv[f].views[k])].emplace_back(f, int(k));
-
-      for (std::size_t i = 0; i < cams.size(); ++i) {
-        if (!by_view[i].empty()) {
-          const auto image = scene.image(image_views[i]);
-          const FloatImage plane =
-              options.color ? FloatImage::rgb_of(*image) : FloatImage::luminance_of(*image);
-          const PinholeCamera& cam = cams[i];
-          // Without distortion the projection of a lattice point is the
-          // same barycentric mix of the vertices' homogeneous projections:
-          // three matrix products per (face, view) instead of one per sample.
-          const bool linear = !cam.has_distortion();
-          const Mat3 KR = cam.K() * cam.R;
-          const Vec3 Kt = cam.K() * cam.t;
-          tbb::parallel_for(tbb::blocked_range<std::size_t>(0, by_view[i].size()), [&](const auto& r) {
-            for (std::size_t j = r.begin(); j < r.end(); ++j) {
-              const auto [f, k] = by_view[i][j];
-              const int rs = fv[f].samples_per_side;
-              const std::size_t n = std::size_t(rs + 1) * (rs + 2) / 2;
-              float* slot = &samples[offset[f - block_begin] + std::size_t(k) * n * channels];
-              const Face& face = mesh.faces[f];
-              const Vec3 &v0 = mesh.vertices[face[0]], &v1 = mesh.vertices[face[1]],
-                         &v2 = mesh.vertices[face[2]];
-              // The lattice, contracted towards the centroid by the face's
-              // edge-margin factor (the same 3-D points in every view).
-              const double keep = 1.0 - fv[f].shrink;
-              const Vec3 g = (v0 + v1 + v2) / 3.0;
-              const Vec3 w0 = g + keep * (v0 - g), w1 = g + keep * (v1 - g), w2 = g + keep * (v2 - g);
-              const Vec3 h0 = KR * w0 + Kt, h1 = KR * w1 + Kt, h2 = KR * w2 + Kt;
-              bool ok = true;
-              if (linear && channels == 1) {
-                // Lattice point (a, b, c) with a + b + c = rs: along a row of
-                // constant a, the homogeneous projection moves by h1 - h2.
-                const Vec3 step = h1 - h2;
-                float* out = slot;
-                for (int a = 0; a <= rs && ok; ++a) {
-                  Vec3 h = double(a) * h0 + double(rs - a) * h2;
-                  for (int b = 0; b <= rs - a; ++b, ++out, h += step) {
-                    if (!(h.z() > 0)) { ok = false; break; }
-                    const double inv = 1.0 / h.z();
-                    if (!plane.sample_gray(h.x() * inv, h.y() * inv, out)) { ok = false; break; }
-                  }
-                }
-              } else {
-                std::size_t s = 0;
-                for (int a = 0; a <= rs && ok; ++a)
-                  for (int b = 0; b <= rs - a && ok; ++b, ++s) {
-                    const int c = rs - a - b;
-                    float* out = slot + s * channels;
-                    if (linear) {
-                      const Vec3 h = double(a) * h0 + double(b) * h1 + double(c) * h2;
-                      ok = h.z() > 0 && plane.sample(h.x() / h.z(), h.y() / h.z(), out);
-                    } else {
-                      const Vec3 X = (a * w0 + b * w1 + c * w2) / double(rs);
-                      Vec2 px;
-                      ok = cam.project(X, &px) && plane.sample(px.x(), px.y(), out);
-                    }
-                  }
-              }
-              if (!ok) slot[0] = std::numeric_limits<float>::quiet_NaN();  // view unusable here
-            }
-          });
-        }
-        const double done = (double(block_begin) + double(block_end - block_begin) * (i + 1) / cams.size()) / F;
+    for (std::size_t begin = 0; begin < F;) {
+      const SampleBlock block = plan_block(in, begin);
+      for (std::size_t i = 0; i < views; ++i) {
+        sample_view(in, block, i);
+        const double done = (double(block.begin) + double(block.end - block.begin) * (i + 1) / views) / F;
         report_progress(progress, 0.95 * done, "pri");
       }
-
-      tbb::parallel_for(tbb::blocked_range<std::size_t>(block_begin, block_end), [&](const auto& r) {
-        std::vector<const float*> patches;
-        std::vector<PatchStats> stats;
-        for (std::size_t f = r.begin(); f < r.end(); ++f) {
-          const int rs = fv[f].samples_per_side;
-          const std::size_t n = std::size_t(rs + 1) * (rs + 2) / 2 * channels;
-          patches.clear();
-          for (std::size_t k = 0; k < fv[f].views.size(); ++k) {
-            const float* slot = &samples[offset[f - block_begin] + k * n];
-            if (!std::isnan(slot[0])) patches.push_back(slot);
-          }
-          result.pri_views[f] = int(patches.size());
-          if (patches.size() < 2) continue;  // unobserved
-          double sum = 0;
-          std::size_t pairs = 0;
-          if (options.measure == Measure::SSD) {
-            for (std::size_t a = 0; a < patches.size(); ++a)
-              for (std::size_t b = a + 1; b < patches.size(); ++b, ++pairs)
-                sum += ssd_error(patches[a], patches[b], n);
-          } else {
-            stats.clear();
-            for (const float* p : patches) stats.push_back(patch_stats(p, n, options.textureless_variance));
-            for (std::size_t a = 0; a < patches.size(); ++a)
-              for (std::size_t b = a + 1; b < patches.size(); ++b) {
-                if (stats[a].textureless || stats[b].textureless) continue;
-                sum += ncc_from_stats(patches[a], stats[a], patches[b], stats[b], n);
-                ++pairs;
-              }
-          }
-          if (pairs == 0) {
-            result.status[f] = FaceStatus::Textureless;
-            continue;
-          }
-          result.pri[f] = float(sum / double(pairs));
-          result.status[f] = FaceStatus::Observed;
-        }
-      });
-      block_begin = block_end;
+      score_block(in, block, &result);
+      begin = block.end;
     }
   });
-  for (FaceStatus s : result.status) {
-    if (s == FaceStatus::Observed) ++result.observed;
-    else if (s == FaceStatus::Unobserved) ++result.unobserved;
-    else ++result.textureless;
-  }
+  count_statuses(&result);
   report_progress(progress, 1.0, "pri");
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;

@@ -3,6 +3,7 @@
 #include "meshnbv/enum_names.h"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -336,11 +337,100 @@ std::string steps_csv(const LoopResult& result) {
   return ss.str();
 }
 
-LoopResult run_loop(const Dataset& dataset, const LoopOptions& options,
-                    const ProgressCallback& progress,
-                    const std::function<void(const StepRecord&)>& on_step) {
-  const auto start = std::chrono::steady_clock::now();
-  options.check();
+namespace {
+
+// The reference the steps are measured against.
+struct Reference {
+  TriangleMesh mesh;
+  std::string description;         // LoopResult::reference
+  std::vector<double> thresholds;  // of completeness
+};
+
+// The cache name of a reconstructed reference: the options it depends on.
+std::string reference_key(const LoopOptions& options) {
+  std::ostringstream key;
+  key << "reference_v2_" << mesher_name(options.mesher) << "_" << options.max_point_error;
+  if (options.mesher == MesherKind::Delaunay)
+    key << "_" << labelling_name(options.delaunay.labelling) << "_" << options.delaunay.surface_weight
+        << "_" << options.delaunay.min_component_share << "_" << options.delaunay.max_spread << "_"
+        << options.delaunay.max_isolation << "_" << facet_support_name(options.delaunay.facet_support) << "_"
+        << options.delaunay.min_views_per_point;
+  else
+    key << "_" << options.poisson.depth << "_" << options.poisson.trim;
+  return key.str();
+}
+
+// Synthetic datasets: the part of the truth that the dataset's views see.
+// Others: the reconstruction from all views with the same backend (cached).
+Reference loop_reference(const Dataset& dataset, const std::vector<PinholeCamera>& cams,
+                         const ColmapWorkspace& ws, const fs::path& cache, const LoopOptions& options,
+                         const ProgressCallback& progress) {
+  const std::size_t n = cams.size();
+  Reference ref;
+  if (dataset.synthetic) {
+    ref.mesh = observable_part(dataset.truth, cams, 1);
+    ref.description = "ground truth (truth.ply), faces seen by at least one of the " +
+                      std::to_string(n) + " dataset views";
+    ref.thresholds = options.thresholds;
+    if (ref.thresholds.empty()) {
+      const double diag = dataset.truth.bounding_box().diagonal();
+      ref.thresholds = {0.005 * diag, 0.01 * diag, 0.02 * diag};
+    }
+    return ref;
+  }
+  const fs::path ref_file = cache / (reference_key(options) + ".ply");
+  if (fs::exists(ref_file)) {
+    ref.mesh = io::read_ply(ref_file.string());
+  } else {
+    report_progress(progress, 0.0, "reference");
+    std::vector<int> all(n);
+    for (std::size_t i = 0; i < n; ++i) all[i] = int(i);
+    ref.mesh = reconstruct(ws, all, (cache / "reference_work").string(), options).mesh;
+    if (ref.mesh.empty()) throw Error("the reconstruction from all views is empty: no reference");
+    io::write_ply(ref.mesh, ref_file.string());
+  }
+  ref.description = "reconstruction from all " + std::to_string(n) +
+                    " views with the same backend (" + ref_file.string() + ")";
+  ref.thresholds = options.thresholds.empty() ? std::vector<double>{0.00075, 0.00125, 0.00175}
+                                              : options.thresholds;
+  return ref;
+}
+
+// View 0 and the view farthest from it: where the snapshots are taken from.
+std::array<std::size_t, 2> snapshot_views(const std::vector<PinholeCamera>& cams) {
+  std::array<std::size_t, 2> views = {0, 0};
+  for (std::size_t i = 1; i < cams.size(); ++i)
+    if ((cams[i].center() - cams[0].center()).norm() > (cams[views[1]].center() - cams[0].center()).norm())
+      views[1] = i;
+  return views;
+}
+
+// The views of the reconstruction so far (indices into the workspace's
+// views) and the dataset views left to choose from.
+struct Selection {
+  std::vector<int> selected, remaining;
+};
+
+Selection bootstrap_selection(const Dataset& dataset, const LoopOptions& options) {
+  const std::size_t n = dataset.views.size();
+  Selection sel;
+  sel.selected = options.bootstrap_views.empty() ? default_bootstrap(dataset.views, options.bootstrap)
+                                                 : options.bootstrap_views;
+  for (int i : sel.selected)
+    if (i < 0 || std::size_t(i) >= n)
+      throw Error("loop: bootstrap view " + std::to_string(i) + " is not among the " +
+                  std::to_string(n) + " views");
+  if (std::set<int>(sel.selected.begin(), sel.selected.end()).size() != sel.selected.size())
+    throw Error("loop: the bootstrap views repeat");
+  for (std::size_t i = 0; i < n; ++i)
+    if (std::find(sel.selected.begin(), sel.selected.end(), int(i)) == sel.selected.end())
+      sel.remaining.push_back(int(i));
+  return sel;
+}
+
+// Whether nbv takes new poses, rendered from the truth, instead of the
+// dataset's views; throws when the dataset cannot serve the options.
+bool continuous_mode(const Dataset& dataset, const LoopOptions& options) {
   const bool continuous =
       options.strategy == Strategy::Nbv && options.nbv_candidates != CandidateMode::Given;
   if (continuous && !dataset.synthetic)
@@ -350,6 +440,198 @@ LoopResult run_loop(const Dataset& dataset, const LoopOptions& options,
   if (std::size_t(options.bootstrap) >= n && !continuous)
     throw Error("loop: the bootstrap (" + std::to_string(options.bootstrap) +
                 ") leaves no candidate among " + std::to_string(n) + " views");
+  return continuous;
+}
+
+// What every step of run_loop reads.
+struct LoopContext {
+  const Dataset& dataset;
+  const LoopOptions& options;
+  const fs::path& out;
+  ColmapWorkspace& ws;
+  bool continuous;        // nbv with new poses, rendered from the truth
+  std::size_t max_views;  // the view budget
+};
+
+// Reconstruction from the selected views, measured against the reference,
+// and saved (with its snapshots) as options.save_meshes says.
+StepRecord measure_step(const LoopContext& ctx, int step, const Selection& sel, const Reconstruction& recon,
+                        const TriangleMesh& reference, const EvaluationOptions& eo,
+                        const std::array<std::size_t, 2>& snapshot_from, bool last) {
+  const LoopOptions& options = ctx.options;
+  StepRecord rec;
+  rec.step = step;
+  for (int i : sel.selected) rec.views.push_back(ctx.ws.views()[std::size_t(i)].label);
+  rec.seconds_reconstruct = recon.seconds;
+  rec.points = recon.sparse.points.size();
+  rec.faces = recon.mesh.num_faces();
+  rec.metrics = evaluate_reconstruction(recon.mesh, reference, eo);
+  rec.seconds_evaluate = rec.metrics.seconds;
+  if (options.save_meshes == "all" || (options.save_meshes == "last" && last)) {
+    rec.mesh_file = "meshes/step_" + two_digits(step) + "_views_" + two_digits(int(sel.selected.size())) + ".ply";
+    io::write_ply(recon.mesh, (ctx.out / rec.mesh_file).string());
+    if (options.snapshots) {
+      const std::string stem = (ctx.out / rec.mesh_file).replace_extension("").string();
+      snapshot(recon.mesh, ctx.dataset.views[snapshot_from[0]].camera).save(stem + "_a.png");
+      snapshot(recon.mesh, ctx.dataset.views[snapshot_from[1]].camera).save(stem + "_b.png");
+    }
+  }
+  return rec;
+}
+
+// loop.json: the run's options and every step so far.
+nlohmann::json loop_json(const LoopContext& ctx, const LoopResult& result, const EvaluationOptions& eo) {
+  const LoopOptions& options = ctx.options;
+  nlohmann::json j;
+  j["format"] = "meshnbv-loop";
+  j["version"] = 1;
+  j["dataset"] = result.dataset;
+  j["synthetic"] = result.synthetic;
+  j["strategy"] = strategy_name(options.strategy);
+  j["options"] = {{"bootstrap", options.bootstrap},
+                  {"max_views", ctx.max_views},
+                  {"seed", options.seed},
+                  {"candidates", candidate_mode_name(options.nbv_candidates)},
+                  {"mesher", mesher_name(options.mesher)},
+                  {"labelling", labelling_name(options.delaunay.labelling)},
+                  {"surface_weight", options.delaunay.surface_weight},
+                  {"facet_support", facet_support_name(options.delaunay.facet_support)},
+                  {"min_point_views", options.delaunay.min_views_per_point},
+                  {"max_point_error", options.max_point_error},
+                  {"matcher", options.colmap.matcher}};
+  // nbv: the PRI and suggestion options, each table under its one names.
+  j["options"]["pri"] = nlohmann::json::parse(options_json(options.pri, pri_option_table()));
+  j["options"]["suggest"] = nlohmann::json::parse(options_json(options.suggest, suggest_option_table()));
+  j["reference"] = result.reference;
+  j["thresholds"] = result.thresholds;
+  j["percentiles"] = eo.percentiles;
+  j["steps"] = nlohmann::json::array();
+  for (const auto& s : result.steps) j["steps"].push_back(step_json(s));
+  j["seconds"] = result.seconds;
+  return j;
+}
+
+// Results so far, rewritten after every step.
+void write_results(const LoopContext& ctx, const LoopResult& result, const EvaluationOptions& eo) {
+  const nlohmann::json j = loop_json(ctx, result, eo);
+  io::write_atomically((ctx.out / "loop.json").string(), [&](std::ostream& o) { o << j.dump(2) << "\n"; });
+  io::write_atomically((ctx.out / "steps.csv").string(), [&](std::ostream& o) { o << steps_csv(result); });
+}
+
+// What the strategies keep from step to step.
+struct StrategyState {
+  Vec3 centre;                          // uniform: where the dataset's cameras converge
+  std::mt19937_64 rng;                  // random
+  std::shared_ptr<ImageCache> images;   // nbv: the selected views' images, decoded once
+  std::unique_ptr<RayCaster> truth;     // nbv with new poses: renders them
+};
+
+// A strategy's choice of the next view.
+struct Choice {
+  std::string by;               // the strategy, and whether it fell back
+  int pick = -1;                // index into Selection::remaining, or none
+  bool take_new_pose = false;   // continuous nbv: render new_pose
+  PinholeCamera new_pose;
+  double seconds_pri = 0;
+};
+
+// nbv: PRI of the reconstruction in the selected views, then the best
+// suggestion: one of the dataset views left, or (continuous) a new pose.
+// Leaves `choice` alone when there is nothing to reason about.
+void choose_by_nbv(const LoopContext& ctx, const Selection& sel, const TriangleMesh& mesh,
+                   const StrategyState& state, Choice* choice) {
+  if (mesh.empty()) return;
+  Scene scene;
+  scene.mesh = mesh;
+  scene.images = state.images;
+  for (int i : sel.selected) scene.views.push_back(ctx.ws.views()[std::size_t(i)]);
+  const auto tp = std::chrono::steady_clock::now();
+  const PriResult pri = compute_pri(scene, ctx.options.pri);
+  choice->seconds_pri = std::chrono::duration<double>(std::chrono::steady_clock::now() - tp).count();
+  if (pri.observed == 0) return;
+  SuggestOptions so = ctx.options.suggest;
+  so.top = 1;
+  so.mode = ctx.options.nbv_candidates;
+  so.threads = ctx.options.pri.threads;
+  std::vector<View> given;
+  if (!ctx.continuous) {
+    if (sel.remaining.empty()) return;
+    for (int i : sel.remaining) {
+      View v = ctx.ws.views()[std::size_t(i)];
+      v.used = false;
+      given.push_back(v);
+    }
+  }
+  const SuggestResult s = suggest_views(scene, pri.pri, so, given);
+  if (s.suggestions.empty()) return;
+  if (ctx.continuous) {
+    choice->take_new_pose = true;
+    choice->new_pose = s.suggestions[0].camera;
+  } else {
+    for (std::size_t r = 0; r < sel.remaining.size(); ++r)
+      if (ctx.ws.views()[std::size_t(sel.remaining[r])].label == s.suggestions[0].source) choice->pick = int(r);
+  }
+}
+
+Choice choose_next(const LoopContext& ctx, const Selection& sel, const Reconstruction& recon,
+                   StrategyState* state) {
+  std::vector<PinholeCamera> sel_cams, rem_cams;
+  for (int i : sel.selected) sel_cams.push_back(ctx.ws.views()[std::size_t(i)].camera);
+  for (int i : sel.remaining) rem_cams.push_back(ctx.ws.views()[std::size_t(i)].camera);
+  Choice choice;
+  choice.by = strategy_name(ctx.options.strategy);
+  switch (ctx.options.strategy) {
+    case Strategy::Uniform: choice.pick = pick_uniform(sel_cams, rem_cams, state->centre); break;
+    case Strategy::Random: choice.pick = pick_random(sel.remaining.size(), state->rng); break;
+    case Strategy::Coverage:
+      if (!recon.mesh.empty())
+        choice.pick = pick_coverage(recon.mesh, sel_cams, rem_cams, ctx.options.coverage_min_views);
+      break;
+    case Strategy::Nbv: choose_by_nbv(ctx, sel, recon.mesh, *state, &choice); break;
+  }
+  if (!choice.take_new_pose && choice.pick < 0 && !sel.remaining.empty()) {
+    // No reconstruction (or nothing observed) to reason about yet.
+    choice.pick = pick_uniform(sel_cams, rem_cams, state->centre);
+    choice.by += " (fallback: uniform)";
+  }
+  return choice;
+}
+
+// Adds the chosen view to the selection (rendering a new pose first) and
+// gives its label; false when there was nothing to choose from (continuous
+// mode without any dataset view left).
+bool add_choice(const LoopContext& ctx, const Choice& choice, int step, const StrategyState& state,
+                Selection* sel, std::string* added) {
+  if (choice.take_new_pose) {
+    View v;
+    v.label = "nbv_" + two_digits(step + 1);
+    v.camera = choice.new_pose;
+    v.image_path = fs::absolute(ctx.out / "images" / (v.label + ".png")).lexically_normal().string();
+    render_view(ctx.dataset, *state.truth, choice.new_pose).save(v.image_path);
+    sel->selected.push_back(ctx.ws.add_view(v, sel->selected));
+    *added = v.label;
+    return true;
+  }
+  if (choice.pick < 0) return false;
+  const int chosen = sel->remaining[std::size_t(choice.pick)];
+  sel->remaining.erase(sel->remaining.begin() + choice.pick);
+  sel->selected.push_back(chosen);
+  *added = ctx.ws.views()[std::size_t(chosen)].label;
+  return true;
+}
+
+}  // namespace
+
+LoopResult run_loop(const Dataset& dataset, const LoopOptions& options,
+                    const ProgressCallback& progress,
+                    const std::function<void(const StepRecord&)>& on_step) {
+  const auto start = std::chrono::steady_clock::now();
+  auto seconds_since = [](std::chrono::steady_clock::time_point t) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+  };
+  options.check();
+  const bool continuous = continuous_mode(dataset, options);
+  const std::size_t n = dataset.views.size();
   const fs::path out(options.out_dir);
   const fs::path cache = options.cache_dir.empty() ? out / "cache" : fs::path(options.cache_dir);
   const fs::path work = out / "work";
@@ -364,226 +646,58 @@ LoopResult run_loop(const Dataset& dataset, const LoopOptions& options,
   ColmapWorkspace ws((cache / "colmap").string(), dataset.views, options.colmap, progress);
   if (continuous) ws.detach((work / "colmap").string());
 
-  // The reference.
-  TriangleMesh reference;
   std::vector<PinholeCamera> dataset_cams;
   for (const View& v : dataset.views) dataset_cams.push_back(v.camera);
-  if (dataset.synthetic) {
-    reference = observable_part(dataset.truth, dataset_cams, 1);
-    result.reference = "ground truth (truth.ply), faces seen by at least one of the " +
-                       std::to_string(n) + " dataset views";
-    result.thresholds = options.thresholds;
-    if (result.thresholds.empty()) {
-      const double diag = dataset.truth.bounding_box().diagonal();
-      result.thresholds = {0.005 * diag, 0.01 * diag, 0.02 * diag};
-    }
-  } else {
-    std::ostringstream key;
-    key << "reference_v2_" << mesher_name(options.mesher) << "_" << options.max_point_error;
-    if (options.mesher == MesherKind::Delaunay)
-      key << "_" << labelling_name(options.delaunay.labelling) << "_" << options.delaunay.surface_weight
-          << "_" << options.delaunay.min_component_share << "_" << options.delaunay.max_spread << "_"
-          << options.delaunay.max_isolation << "_" << facet_support_name(options.delaunay.facet_support) << "_"
-          << options.delaunay.min_views_per_point;
-    else
-      key << "_" << options.poisson.depth << "_" << options.poisson.trim;
-    const fs::path ref_file = cache / (key.str() + ".ply");
-    if (fs::exists(ref_file)) {
-      reference = io::read_ply(ref_file.string());
-    } else {
-      report_progress(progress, 0.0, "reference");
-      std::vector<int> all(n);
-      for (std::size_t i = 0; i < n; ++i) all[i] = int(i);
-      reference = reconstruct(ws, all, (cache / "reference_work").string(), options).mesh;
-      if (reference.empty()) throw Error("the reconstruction from all views is empty: no reference");
-      io::write_ply(reference, ref_file.string());
-    }
-    result.reference = "reconstruction from all " + std::to_string(n) +
-                       " views with the same backend (" + ref_file.string() + ")";
-    result.thresholds = options.thresholds.empty()
-                            ? std::vector<double>{0.00075, 0.00125, 0.00175}
-                            : options.thresholds;
-  }
-  io::write_ply(reference, (out / "reference.ply").string());
-  // Snapshots from view 0 and the view farthest from it.
-  std::size_t snapshot_views[2] = {0, 0};
-  for (std::size_t i = 1; i < n; ++i)
-    if ((dataset_cams[i].center() - dataset_cams[0].center()).norm() >
-        (dataset_cams[snapshot_views[1]].center() - dataset_cams[0].center()).norm())
-      snapshot_views[1] = i;
+  const Reference reference = loop_reference(dataset, dataset_cams, ws, cache, options, progress);
+  result.reference = reference.description;
+  result.thresholds = reference.thresholds;
+  io::write_ply(reference.mesh, (out / "reference.ply").string());
+  const std::array<std::size_t, 2> snapshot_from = snapshot_views(dataset_cams);
   if (options.snapshots) {
-    snapshot(reference, dataset_cams[snapshot_views[0]]).save((out / "reference_a.png").string());
-    snapshot(reference, dataset_cams[snapshot_views[1]]).save((out / "reference_b.png").string());
+    snapshot(reference.mesh, dataset_cams[snapshot_from[0]]).save((out / "reference_a.png").string());
+    snapshot(reference.mesh, dataset_cams[snapshot_from[1]]).save((out / "reference_b.png").string());
   }
   EvaluationOptions eo = options.evaluation;
   eo.thresholds = result.thresholds;
   eo.threads = options.pri.threads;
 
-  // Selection state.
-  std::vector<int> selected = options.bootstrap_views.empty()
-                                  ? default_bootstrap(dataset.views, options.bootstrap)
-                                  : options.bootstrap_views;
-  for (int i : selected)
-    if (i < 0 || std::size_t(i) >= n)
-      throw Error("loop: bootstrap view " + std::to_string(i) + " is not among the " +
-                  std::to_string(n) + " views");
-  if (std::set<int>(selected.begin(), selected.end()).size() != selected.size())
-    throw Error("loop: the bootstrap views repeat");
-  std::vector<int> remaining;
-  for (std::size_t i = 0; i < n; ++i)
-    if (std::find(selected.begin(), selected.end(), int(i)) == selected.end()) remaining.push_back(int(i));
-  const std::size_t max_views = options.max_views > 0 ? std::size_t(options.max_views) : n;
-  const Vec3 centre = convergence_point(dataset_cams);
-  std::mt19937_64 rng(options.seed);
-  std::shared_ptr<ImageCache> images = std::make_shared<ImageCache>();
-  std::unique_ptr<RayCaster> truth_caster;
+  Selection sel = bootstrap_selection(dataset, options);
+  const LoopContext ctx{dataset, options, out, ws, continuous,
+                        options.max_views > 0 ? std::size_t(options.max_views) : n};
+  StrategyState state{convergence_point(dataset_cams), std::mt19937_64(options.seed),
+                      std::make_shared<ImageCache>(), nullptr};
   if (continuous) {
-    truth_caster = std::make_unique<RayCaster>(dataset.truth);
+    state.truth = std::make_unique<RayCaster>(dataset.truth);
     fs::create_directories(out / "images");
   }
 
-  std::string added, chosen_by;
-  double seconds_pri = 0, seconds_choose = 0;
+  Choice last_choice;  // the choice that added the newest view (none at step 0)
+  std::string added;
+  double seconds_choose = 0;
   for (int step = 0;; ++step) {
-    report_progress(progress, double(selected.size()) / double(max_views), "loop");
-    StepRecord rec;
-    rec.step = step;
-    for (int i : selected) rec.views.push_back(ws.views()[std::size_t(i)].label);
-    rec.added = added;
-    rec.chosen_by = chosen_by;
-    rec.seconds_pri = seconds_pri;
-    rec.seconds_choose = seconds_choose;
+    report_progress(progress, double(sel.selected.size()) / double(ctx.max_views), "loop");
     const std::string step_dir = (work / ("step_" + two_digits(step))).string();
-    const Reconstruction recon = reconstruct(ws, selected, step_dir, options);
+    const Reconstruction recon = reconstruct(ws, sel.selected, step_dir, options);
     if (!options.keep_work) fs::remove_all(step_dir);
-    rec.seconds_reconstruct = recon.seconds;
-    rec.points = recon.sparse.points.size();
-    rec.faces = recon.mesh.num_faces();
-    rec.metrics = evaluate_reconstruction(recon.mesh, reference, eo);
-    rec.seconds_evaluate = rec.metrics.seconds;
-    const bool last = selected.size() >= max_views || (!continuous && remaining.empty());
-    if (options.save_meshes == "all" || (options.save_meshes == "last" && last)) {
-      rec.mesh_file = "meshes/step_" + two_digits(step) + "_views_" + two_digits(int(selected.size())) + ".ply";
-      io::write_ply(recon.mesh, (out / rec.mesh_file).string());
-      if (options.snapshots) {
-        const std::string stem = (out / rec.mesh_file).replace_extension("").string();
-        snapshot(recon.mesh, dataset.views[snapshot_views[0]].camera).save(stem + "_a.png");
-        snapshot(recon.mesh, dataset.views[snapshot_views[1]].camera).save(stem + "_b.png");
-      }
-    }
+    const bool last = sel.selected.size() >= ctx.max_views || (!continuous && sel.remaining.empty());
+    StepRecord rec = measure_step(ctx, step, sel, recon, reference.mesh, eo, snapshot_from, last);
+    rec.added = added;
+    rec.chosen_by = last_choice.by;
+    rec.seconds_pri = last_choice.seconds_pri;
+    rec.seconds_choose = seconds_choose;
     result.steps.push_back(rec);
-    result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    // Results so far, rewritten after every step.
-    nlohmann::json j;
-    j["format"] = "meshnbv-loop";
-    j["version"] = 1;
-    j["dataset"] = result.dataset;
-    j["synthetic"] = result.synthetic;
-    j["strategy"] = strategy_name(options.strategy);
-    j["options"] = {{"bootstrap", options.bootstrap},
-                    {"max_views", max_views},
-                    {"seed", options.seed},
-                    {"candidates", candidate_mode_name(options.nbv_candidates)},
-                    {"mesher", mesher_name(options.mesher)},
-                    {"labelling", labelling_name(options.delaunay.labelling)},
-                    {"surface_weight", options.delaunay.surface_weight},
-                    {"facet_support", facet_support_name(options.delaunay.facet_support)},
-                    {"min_point_views", options.delaunay.min_views_per_point},
-                    {"max_point_error", options.max_point_error},
-                    {"matcher", options.colmap.matcher}};
-    // nbv: the PRI and suggestion options, each table under its one names.
-    j["options"]["pri"] = nlohmann::json::parse(options_json(options.pri, pri_option_table()));
-    j["options"]["suggest"] =
-        nlohmann::json::parse(options_json(options.suggest, suggest_option_table()));
-    j["reference"] = result.reference;
-    j["thresholds"] = result.thresholds;
-    j["percentiles"] = eo.percentiles;
-    j["steps"] = nlohmann::json::array();
-    for (const auto& s : result.steps) j["steps"].push_back(step_json(s));
-    j["seconds"] = result.seconds;
-    io::write_atomically((out / "loop.json").string(), [&](std::ostream& o) { o << j.dump(2) << "\n"; });
-    io::write_atomically((out / "steps.csv").string(), [&](std::ostream& o) { o << steps_csv(result); });
+    result.seconds = seconds_since(start);
+    write_results(ctx, result, eo);
     if (on_step) on_step(rec);
     if (last) break;
 
-    // Choose the next view.
-    seconds_pri = seconds_choose = 0;
-    auto t0 = std::chrono::steady_clock::now();
-    std::vector<PinholeCamera> sel_cams, rem_cams;
-    for (int i : selected) sel_cams.push_back(ws.views()[std::size_t(i)].camera);
-    for (int i : remaining) rem_cams.push_back(ws.views()[std::size_t(i)].camera);
-    int pick = -1;  // index into remaining
-    std::string by = strategy_name(options.strategy);
-    bool take_new_pose = false;
-    PinholeCamera new_pose;
-    switch (options.strategy) {
-      case Strategy::Uniform: pick = pick_uniform(sel_cams, rem_cams, centre); break;
-      case Strategy::Random: pick = pick_random(remaining.size(), rng); break;
-      case Strategy::Coverage:
-        if (!recon.mesh.empty()) pick = pick_coverage(recon.mesh, sel_cams, rem_cams, options.coverage_min_views);
-        break;
-      case Strategy::Nbv: {
-        if (recon.mesh.empty()) break;
-        Scene scene;
-        scene.mesh = recon.mesh;
-        scene.images = images;
-        for (int i : selected) scene.views.push_back(ws.views()[std::size_t(i)]);
-        const auto tp = std::chrono::steady_clock::now();
-        const PriResult pri = compute_pri(scene, options.pri);
-        seconds_pri = std::chrono::duration<double>(std::chrono::steady_clock::now() - tp).count();
-        if (pri.observed == 0) break;
-        SuggestOptions so = options.suggest;
-        so.top = 1;
-        so.mode = options.nbv_candidates;
-        so.threads = options.pri.threads;
-        std::vector<View> given;
-        if (!continuous) {
-          if (remaining.empty()) break;
-          for (int i : remaining) {
-            View v = ws.views()[std::size_t(i)];
-            v.used = false;
-            given.push_back(v);
-          }
-        }
-        const SuggestResult s = suggest_views(scene, pri.pri, so, given);
-        if (s.suggestions.empty()) break;
-        if (continuous) {
-          take_new_pose = true;
-          new_pose = s.suggestions[0].camera;
-        } else {
-          for (std::size_t r = 0; r < remaining.size(); ++r)
-            if (ws.views()[std::size_t(remaining[r])].label == s.suggestions[0].source) pick = int(r);
-        }
-        break;
-      }
-    }
-    if (take_new_pose) {
-      View v;
-      v.label = "nbv_" + two_digits(step + 1);
-      v.camera = new_pose;
-      v.image_path = fs::absolute(out / "images" / (v.label + ".png")).lexically_normal().string();
-      render_view(dataset, *truth_caster, new_pose).save(v.image_path);
-      selected.push_back(ws.add_view(v, selected));
-      added = v.label;
-      chosen_by = by;
-    } else {
-      if (pick < 0 && !remaining.empty()) {
-        // No reconstruction (or nothing observed) to reason about yet.
-        pick = pick_uniform(sel_cams, rem_cams, centre);
-        by += " (fallback: uniform)";
-      }
-      if (pick < 0) break;  // continuous mode without any dataset view left
-      const int chosen = remaining[std::size_t(pick)];
-      remaining.erase(remaining.begin() + pick);
-      selected.push_back(chosen);
-      added = ws.views()[std::size_t(chosen)].label;
-      chosen_by = by;
-    }
-    seconds_choose =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() - seconds_pri;
+    const auto t0 = std::chrono::steady_clock::now();
+    last_choice = choose_next(ctx, sel, recon, &state);
+    if (!add_choice(ctx, last_choice, step, state, &sel, &added)) break;
+    seconds_choose = seconds_since(t0) - last_choice.seconds_pri;
   }
   if (!options.keep_work) fs::remove_all(work);
-  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  result.seconds = seconds_since(start);
   return result;
 }
 

@@ -224,6 +224,260 @@ void drop_small_components(TriangleMesh* mesh, double min_share) {
   mesh->vertices = std::move(vertices);
 }
 
+// Points seen by enough views and finite are usable; a view index out of
+// range is an error.
+std::vector<char> usable_points(const std::vector<SparsePoint>& points, const std::vector<Vec3>& centres,
+                                const VisibilityMesherOptions& options) {
+  std::vector<char> usable(points.size(), 0);
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const SparsePoint& p = points[i];
+    for (int v : p.views)
+      if (v < 0 || std::size_t(v) >= centres.size())
+        throw Error("mesher: point " + std::to_string(i) + " names camera " + std::to_string(v) +
+                    " of " + std::to_string(centres.size()));
+    usable[i] = int(p.views.size()) >= options.min_views_per_point && p.position.allFinite();
+  }
+  return usable;
+}
+
+// The Delaunay triangulation of the usable points, and the vertex of each
+// point (null for the others).
+struct Triangulation {
+  Delaunay dt;
+  std::vector<VertexHandle> handle;
+
+  void build(const std::vector<SparsePoint>& points, const std::vector<char>& usable) {
+    dt.clear();
+    handle.assign(points.size(), VertexHandle());
+    CellHandle hint;
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      if (!usable[i]) continue;
+      const Point q = to_cgal(points[i].position);
+      handle[i] = hint == CellHandle() ? dt.insert(q) : dt.insert(q, hint);
+      hint = handle[i]->cell();
+    }
+  }
+};
+
+// Points whose 3 shortest Delaunay edges are longer, on average, than
+// `max_isolation` times the median of that mean: no longer usable. Returns
+// how many.
+std::size_t drop_isolated_points(const std::vector<SparsePoint>& points, const Triangulation& t,
+                                 double max_isolation, std::vector<char>* usable) {
+  std::vector<double> isolation(points.size(), 0.0), all;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    if (!(*usable)[i]) continue;
+    std::vector<VertexHandle> nb;
+    t.dt.finite_adjacent_vertices(t.handle[i], std::back_inserter(nb));
+    std::vector<double> d;
+    for (const auto& u : nb) d.push_back((from_cgal(u->point()) - points[i].position).norm());
+    std::sort(d.begin(), d.end());
+    const std::size_t k = std::min<std::size_t>(3, d.size());
+    double sum = 0;
+    for (std::size_t j = 0; j < k; ++j) sum += d[j];
+    isolation[i] = k ? sum / double(k) : 0.0;
+    all.push_back(isolation[i]);
+  }
+  if (all.empty()) return 0;
+  std::nth_element(all.begin(), all.begin() + long(all.size() / 2), all.end());
+  const double limit = max_isolation * all[all.size() / 2];
+  std::size_t dropped = 0;
+  for (std::size_t i = 0; i < points.size(); ++i)
+    if ((*usable)[i] && isolation[i] > limit) {
+      (*usable)[i] = 0;
+      ++dropped;
+    }
+  return dropped;
+}
+
+// The triangulation numbered: vertex ids and cell ids in `info()`, every
+// cell (infinite ones too) by id, and the cameras of each vertex, sorted
+// (duplicate points share a vertex and their views).
+struct Numbering {
+  std::vector<std::vector<int>> sorted_views;  // per vertex id
+  std::vector<CellHandle> cells;               // per cell id
+};
+
+Numbering number_triangulation(const std::vector<SparsePoint>& points, Triangulation* t) {
+  Numbering n;
+  Delaunay& dt = t->dt;
+  int next_vertex_id = 0;
+  for (auto v = dt.finite_vertices_begin(); v != dt.finite_vertices_end(); ++v)
+    v->info() = next_vertex_id++;
+  n.sorted_views.resize(static_cast<std::size_t>(next_vertex_id));
+  for (std::size_t i = 0; i < points.size(); ++i)
+    if (t->handle[i] != VertexHandle()) {
+      auto& views = n.sorted_views[std::size_t(t->handle[i]->info())];
+      views.insert(views.end(), points[i].views.begin(), points[i].views.end());
+    }
+  for (auto& views : n.sorted_views) {
+    std::sort(views.begin(), views.end());
+    views.erase(std::unique(views.begin(), views.end()), views.end());
+  }
+  n.cells.reserve(dt.number_of_cells() + 64);
+  for (auto c = dt.all_cells_begin(); c != dt.all_cells_end(); ++c) {
+    c->info() = int(n.cells.size());
+    n.cells.push_back(c);
+  }
+  return n;
+}
+
+// The ray from point p (vertex v) to camera centre c: every crossed facet
+// should not be surface, the cells crossed are free, the cell just behind
+// the point is matter. Throws what CGAL throws on a degenerate walk.
+void trace_ray(const Delaunay& dt, const VertexHandle& v, const Vec3& p, const Vec3& c, double alpha,
+               Weights* w) {
+  // The walk starts just off the point: CGAL's traverser started at a
+  // vertex on the convex hull may begin in any incident finite cell, even
+  // when the segment leaves the hull at once.
+  const Vec3 dir = (c - p).normalized();
+  const double eps = 1e-7 * (c - p).norm();
+  const Point ray_start = to_cgal(p + eps * dir);
+  const CellHandle first = dt.locate(ray_start, v->cell());
+  if (!dt.is_infinite(first)) {  // else the ray leaves the (convex) hull for good
+    SegmentCells it(&dt, ray_start, to_cgal(c), first);
+    const SegmentCells end = dt.segment_traverser_cells_end();
+    CellHandle previous;
+    bool left_hull = false;
+    for (; it != end; ++it) {
+      const CellHandle cell = it;
+      const auto id = std::size_t(cell->info());
+      int facet = -1;
+      if (previous != CellHandle() && cell->has_neighbor(previous, facet))
+        w->facet[4 * id + std::size_t(facet)] += alpha;
+      if (dt.is_infinite(cell)) {
+        left_hull = true;
+        break;
+      }
+      ++w->votes[id];
+      previous = cell;
+    }
+    if (!left_hull && previous != CellHandle()) w->source[std::size_t(previous->info())] += alpha;
+  }
+  // Just behind the point: matter.
+  const CellHandle back = dt.locate(to_cgal(p - eps * dir), v->cell());
+  if (!dt.is_infinite(back)) w->sink[std::size_t(back->info())] += alpha;
+}
+
+// Free facets and cells in front of each point, matter behind, from the
+// rays of every point to its cameras.
+Weights visibility_weights(const std::vector<SparsePoint>& points, const std::vector<Vec3>& centres,
+                           const Triangulation& t, std::size_t cells, double alpha,
+                           VisibilityMesherResult* result, const ProgressCallback& progress) {
+  Weights w(cells);
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    if (t.handle[i] == VertexHandle()) continue;
+    const Vec3 p = points[i].position;
+    for (int view : points[i].views) {
+      const Vec3 c = centres[std::size_t(view)];
+      if ((c - p).norm() <= 0) continue;
+      ++result->rays;
+      try {
+        trace_ray(t.dt, t.handle[i], p, c, alpha, &w);
+      } catch (const std::exception&) {
+        ++result->failed_rays;  // a degenerate configuration CGAL refused: skip the ray
+      }
+    }
+    if (i % 256 == 0) report_progress(progress, 0.2 + 0.6 * double(i) / double(points.size()), "visibility");
+  }
+  return w;
+}
+
+// Free (1) or occupied (0) per cell, by vote or by graph cut.
+std::vector<char> label_cells(const Delaunay& dt, const std::vector<CellHandle>& cells, const Weights& w,
+                              const VisibilityMesherOptions& options) {
+  std::vector<char> free;
+  if (options.labelling == Labelling::Vote) {
+    free.resize(cells.size());
+    for (std::size_t c = 0; c < cells.size(); ++c)
+      free[c] = dt.is_infinite(cells[c]) || w.votes[c] >= options.min_free_votes;
+    return free;
+  }
+  std::vector<double> used;
+  for (double x : w.facet)
+    if (x > 0) used.push_back(x);
+  double median = options.visibility_weight;
+  if (!used.empty()) {
+    std::nth_element(used.begin(), used.begin() + long(used.size() / 2), used.end());
+    median = used[used.size() / 2];
+  }
+  return label_by_graph_cut(dt, cells, w, options.surface_weight * median);
+}
+
+// Whether a boundary triangle whose corners were seen by the cameras `v`
+// counts as observed under `support` (not All): a camera of a corner faces
+// it, and by Edges each edge's ends share a camera, or by Common one camera
+// saw all three corners and faces it.
+bool facet_supported(FacetSupport support, const std::vector<int>* const v[3], const Vec3& outward,
+                     const Vec3& centroid, const std::vector<Vec3>& centres) {
+  auto shares = [](const std::vector<int>& x, const std::vector<int>& y) {
+    for (int view : x)
+      if (std::binary_search(y.begin(), y.end(), view)) return true;
+    return false;
+  };
+  auto faces_it = [&](int view) { return outward.dot(centres[std::size_t(view)] - centroid) > 0; };
+  bool supported = false;
+  if (support == FacetSupport::Common) {
+    for (int view : *v[0])
+      if (std::binary_search(v[1]->begin(), v[1]->end(), view) &&
+          std::binary_search(v[2]->begin(), v[2]->end(), view) && faces_it(view)) {
+        supported = true;
+        break;
+      }
+  } else {
+    for (int k = 0; k < 3 && !supported; ++k)
+      for (int view : *v[k])
+        if (faces_it(view)) {
+          supported = true;
+          break;
+        }
+    if (supported && support == FacetSupport::Edges)
+      supported = shares(*v[0], *v[1]) && shares(*v[1], *v[2]) && shares(*v[2], *v[0]);
+  }
+  return supported;
+}
+
+// The free/occupied boundary into result->mesh, normals towards the free
+// side, and the counts of free and occupied cells.
+void extract_surface(const Numbering& n, const std::vector<char>& free, const std::vector<Vec3>& centres,
+                     const VisibilityMesherOptions& options, VisibilityMesherResult* result) {
+  std::vector<int> vertex_out(n.sorted_views.size(), -1);
+  TriangleMesh& mesh = result->mesh;
+  auto out_vertex = [&](const VertexHandle& vh) {
+    int& slot = vertex_out[std::size_t(vh->info())];
+    if (slot < 0) {
+      slot = int(mesh.vertices.size());
+      mesh.vertices.push_back(from_cgal(vh->point()));
+    }
+    return slot;
+  };
+  for (std::size_t c = 0; c < n.cells.size(); ++c) {
+    if (free[c]) {
+      ++result->free_tetrahedra;
+      continue;
+    }
+    ++result->occupied_tetrahedra;
+    const CellHandle ch = n.cells[c];
+    for (int i = 0; i < 4; ++i) {
+      if (!free[std::size_t(ch->neighbor(i)->info())]) continue;
+      Face f{out_vertex(ch->vertex((i + 1) % 4)), out_vertex(ch->vertex((i + 2) % 4)),
+             out_vertex(ch->vertex((i + 3) % 4))};
+      const Vec3& a = mesh.vertices[std::size_t(f[0])];
+      const Vec3 nrm = (mesh.vertices[std::size_t(f[1])] - a).cross(mesh.vertices[std::size_t(f[2])] - a);
+      const bool flip = nrm.dot(from_cgal(ch->vertex(i)->point()) - a) > 0;
+      if (flip) std::swap(f[1], f[2]);
+      if (options.facet_support != FacetSupport::All) {
+        const Vec3 outward = flip ? Vec3(-nrm) : nrm;
+        const Vec3 centroid = (a + mesh.vertices[std::size_t(f[1])] + mesh.vertices[std::size_t(f[2])]) / 3.0;
+        const std::vector<int>* v[3];
+        for (int k = 0; k < 3; ++k) v[k] = &n.sorted_views[std::size_t(ch->vertex((i + 1 + k) % 4)->info())];
+        if (!facet_supported(options.facet_support, v, outward, centroid, centres)) continue;
+      }
+      mesh.faces.push_back(f);
+    }
+  }
+}
+
 }  // namespace
 
 VisibilityMesherResult mesh_from_visibility(const std::vector<SparsePoint>& points,
@@ -239,216 +493,29 @@ VisibilityMesherResult mesh_from_visibility(const std::vector<SparsePoint>& poin
   };
 
   // 1. Delaunay triangulation of the usable points, without outliers.
-  std::vector<char> usable(points.size(), 0);
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    const SparsePoint& p = points[i];
-    for (int v : p.views)
-      if (v < 0 || std::size_t(v) >= centres.size())
-        throw Error("mesher: point " + std::to_string(i) + " names camera " + std::to_string(v) +
-                    " of " + std::to_string(centres.size()));
-    usable[i] = int(p.views.size()) >= options.min_views_per_point && p.position.allFinite();
-  }
+  std::vector<char> usable = usable_points(points, centres, options);
   drop_far_points(points, options.max_spread, &usable, &result.outliers);
-  Delaunay dt;
-  std::vector<VertexHandle> handle(points.size());
-  auto triangulate = [&]() {
-    dt.clear();
-    std::fill(handle.begin(), handle.end(), VertexHandle());
-    CellHandle hint;
-    for (std::size_t i = 0; i < points.size(); ++i) {
-      if (!usable[i]) continue;
-      const Point q = to_cgal(points[i].position);
-      handle[i] = hint == CellHandle() ? dt.insert(q) : dt.insert(q, hint);
-      hint = handle[i]->cell();
-    }
-  };
-  triangulate();
-  if (options.max_isolation > 0 && dt.dimension() == 3) {
-    // Mean of the 3 shortest Delaunay edges of each point.
-    std::vector<double> isolation(points.size(), 0.0), all;
-    for (std::size_t i = 0; i < points.size(); ++i) {
-      if (!usable[i]) continue;
-      std::vector<VertexHandle> nb;
-      dt.finite_adjacent_vertices(handle[i], std::back_inserter(nb));
-      std::vector<double> d;
-      for (const auto& u : nb) d.push_back((from_cgal(u->point()) - points[i].position).norm());
-      std::sort(d.begin(), d.end());
-      const std::size_t k = std::min<std::size_t>(3, d.size());
-      double sum = 0;
-      for (std::size_t j = 0; j < k; ++j) sum += d[j];
-      isolation[i] = k ? sum / double(k) : 0.0;
-      all.push_back(isolation[i]);
-    }
-    if (!all.empty()) {
-      std::nth_element(all.begin(), all.begin() + long(all.size() / 2), all.end());
-      const double limit = options.max_isolation * all[all.size() / 2];
-      std::size_t dropped = 0;
-      for (std::size_t i = 0; i < points.size(); ++i)
-        if (usable[i] && isolation[i] > limit) {
-          usable[i] = 0;
-          ++dropped;
-        }
-      result.outliers += dropped;
-      if (dropped) triangulate();
-    }
+  Triangulation t;
+  t.build(points, usable);
+  if (options.max_isolation > 0 && t.dt.dimension() == 3) {
+    const std::size_t dropped = drop_isolated_points(points, t, options.max_isolation, &usable);
+    result.outliers += dropped;
+    if (dropped) t.build(points, usable);
   }
-  result.points = dt.number_of_vertices();
-  if (dt.dimension() < 3) return finish();
+  result.points = t.dt.number_of_vertices();
+  if (t.dt.dimension() < 3) return finish();
   report_progress(progress, 0.2, "delaunay");
+  const Numbering n = number_triangulation(points, &t);
+  result.tetrahedra = t.dt.number_of_finite_cells();
 
-  int next_vertex_id = 0;
-  for (auto v = dt.finite_vertices_begin(); v != dt.finite_vertices_end(); ++v)
-    v->info() = next_vertex_id++;
-  // The cameras of each vertex, sorted (duplicate points share a vertex and their views).
-  std::vector<std::vector<int>> sorted_views(static_cast<std::size_t>(next_vertex_id));
-  for (std::size_t i = 0; i < points.size(); ++i)
-    if (handle[i] != VertexHandle()) {
-      auto& views = sorted_views[std::size_t(handle[i]->info())];
-      views.insert(views.end(), points[i].views.begin(), points[i].views.end());
-    }
-  for (auto& views : sorted_views) {
-    std::sort(views.begin(), views.end());
-    views.erase(std::unique(views.begin(), views.end()), views.end());
-  }
-  std::vector<CellHandle> cells;
-  cells.reserve(dt.number_of_cells() + 64);
-  for (auto c = dt.all_cells_begin(); c != dt.all_cells_end(); ++c) {
-    c->info() = int(cells.size());
-    cells.push_back(c);
-  }
-  result.tetrahedra = dt.number_of_finite_cells();
-
-  // 2. Visibility: free facets and cells in front of each point, matter behind.
-  Weights w(cells.size());
-  const double alpha = options.visibility_weight;
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    if (handle[i] == VertexHandle()) continue;
-    const VertexHandle v = handle[i];
-    const Vec3 p = points[i].position;
-    for (int view : points[i].views) {
-      const Vec3 c = centres[std::size_t(view)];
-      if ((c - p).norm() <= 0) continue;
-      ++result.rays;
-      try {
-        // Towards the camera: every crossed facet should not be surface.
-        // The walk starts just off the point: CGAL's traverser started at a
-        // vertex on the convex hull may begin in any incident finite cell,
-        // even when the segment leaves the hull at once.
-        const Vec3 dir = (c - p).normalized();
-        const double eps = 1e-7 * (c - p).norm();
-        const Point ray_start = to_cgal(p + eps * dir);
-        const CellHandle first = dt.locate(ray_start, v->cell());
-        if (!dt.is_infinite(first)) {  // else the ray leaves the (convex) hull for good
-          SegmentCells it(&dt, ray_start, to_cgal(c), first);
-          const SegmentCells end = dt.segment_traverser_cells_end();
-          CellHandle previous;
-          bool left_hull = false;
-          for (; it != end; ++it) {
-            const CellHandle cell = it;
-            const auto id = std::size_t(cell->info());
-            int facet = -1;
-            if (previous != CellHandle() && cell->has_neighbor(previous, facet))
-              w.facet[4 * id + std::size_t(facet)] += alpha;
-            if (dt.is_infinite(cell)) {
-              left_hull = true;
-              break;
-            }
-            ++w.votes[id];
-            previous = cell;
-          }
-          if (!left_hull && previous != CellHandle()) w.source[std::size_t(previous->info())] += alpha;
-        }
-        // Just behind the point: matter.
-        const CellHandle back = dt.locate(to_cgal(p - eps * dir), v->cell());
-        if (!dt.is_infinite(back)) w.sink[std::size_t(back->info())] += alpha;
-      } catch (const std::exception&) {
-        ++result.failed_rays;  // a degenerate configuration CGAL refused: skip the ray
-      }
-    }
-    if (i % 256 == 0) report_progress(progress, 0.2 + 0.6 * double(i) / double(points.size()), "visibility");
-  }
-
-  // 3. Labels.
-  std::vector<char> free;
-  if (options.labelling == Labelling::Vote) {
-    free.resize(cells.size());
-    for (std::size_t c = 0; c < cells.size(); ++c)
-      free[c] = dt.is_infinite(cells[c]) || w.votes[c] >= options.min_free_votes;
-  } else {
-    std::vector<double> used;
-    for (double x : w.facet)
-      if (x > 0) used.push_back(x);
-    double median = alpha;
-    if (!used.empty()) {
-      std::nth_element(used.begin(), used.begin() + long(used.size() / 2), used.end());
-      median = used[used.size() / 2];
-    }
-    free = label_by_graph_cut(dt, cells, w, options.surface_weight * median);
-  }
+  // 2. Visibility, 3. labels, 4. the boundary.
+  const Weights w = visibility_weights(points, centres, t, n.cells.size(), options.visibility_weight,
+                                       &result, progress);
+  const std::vector<char> free = label_cells(t.dt, n.cells, w, options);
   report_progress(progress, 0.9, "labelling");
-
-  // 4. The free/occupied boundary, normals towards the free side.
-  std::vector<int> vertex_out(std::size_t(next_vertex_id), -1);
-  TriangleMesh& mesh = result.mesh;
-  auto out_vertex = [&](const VertexHandle& vh) {
-    int& slot = vertex_out[std::size_t(vh->info())];
-    if (slot < 0) {
-      slot = int(mesh.vertices.size());
-      mesh.vertices.push_back(from_cgal(vh->point()));
-    }
-    return slot;
-  };
-  for (std::size_t c = 0; c < cells.size(); ++c) {
-    if (free[c]) {
-      ++result.free_tetrahedra;
-      continue;
-    }
-    ++result.occupied_tetrahedra;
-    const CellHandle ch = cells[c];
-    for (int i = 0; i < 4; ++i) {
-      if (!free[std::size_t(ch->neighbor(i)->info())]) continue;
-      Face f{out_vertex(ch->vertex((i + 1) % 4)), out_vertex(ch->vertex((i + 2) % 4)),
-             out_vertex(ch->vertex((i + 3) % 4))};
-      const Vec3& a = mesh.vertices[std::size_t(f[0])];
-      const Vec3 n = (mesh.vertices[std::size_t(f[1])] - a).cross(mesh.vertices[std::size_t(f[2])] - a);
-      const bool flip = n.dot(from_cgal(ch->vertex(i)->point()) - a) > 0;
-      if (flip) std::swap(f[1], f[2]);
-      if (options.facet_support != FacetSupport::All) {
-        const Vec3 outward = flip ? Vec3(-n) : n;
-        const Vec3 centroid = (a + mesh.vertices[std::size_t(f[1])] + mesh.vertices[std::size_t(f[2])]) / 3.0;
-        const std::vector<int>* v[3];
-        for (int k = 0; k < 3; ++k) v[k] = &sorted_views[std::size_t(ch->vertex((i + 1 + k) % 4)->info())];
-        auto shares = [](const std::vector<int>& x, const std::vector<int>& y) {
-          for (int view : x)
-            if (std::binary_search(y.begin(), y.end(), view)) return true;
-          return false;
-        };
-        auto faces_it = [&](int view) { return outward.dot(centres[std::size_t(view)] - centroid) > 0; };
-        bool supported = false;
-        if (options.facet_support == FacetSupport::Common) {
-          for (int view : *v[0])
-            if (std::binary_search(v[1]->begin(), v[1]->end(), view) &&
-                std::binary_search(v[2]->begin(), v[2]->end(), view) && faces_it(view)) {
-              supported = true;
-              break;
-            }
-        } else {
-          for (int k = 0; k < 3 && !supported; ++k)
-            for (int view : *v[k])
-              if (faces_it(view)) {
-                supported = true;
-                break;
-              }
-          if (supported && options.facet_support == FacetSupport::Edges)
-            supported = shares(*v[0], *v[1]) && shares(*v[1], *v[2]) && shares(*v[2], *v[0]);
-        }
-        if (!supported) continue;
-      }
-      mesh.faces.push_back(f);
-    }
-  }
-  result.free_tetrahedra -= std::min(result.free_tetrahedra, cells.size() - result.tetrahedra);
-  drop_small_components(&mesh, options.min_component_share);
+  extract_surface(n, free, centres, options, &result);
+  result.free_tetrahedra -= std::min(result.free_tetrahedra, n.cells.size() - result.tetrahedra);
+  drop_small_components(&result.mesh, options.min_component_share);
   report_progress(progress, 1.0, "mesh");
   return finish();
 }

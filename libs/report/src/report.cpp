@@ -84,84 +84,61 @@ PinholeCamera scaled(const PinholeCamera& c, int width) {
   return s;
 }
 
-}  // namespace
-
-ReportFiles write_report(const ReportInputs& in, const std::string& folder,
-                         const ProgressCallback& progress) {
-  if (!in.scene || !in.pri || !in.suggestions) throw Error("report: missing scene, PRI or suggestions");
-  fs::create_directories(folder);
-  const Scene& scene = *in.scene;
-  const SuggestResult& sug = *in.suggestions;
-  const TriangleMesh coloured = mesh_with_pri(scene.mesh, *in.pri);
-  const RayCaster caster(scene.mesh);
-  RenderOptions ro;
-  ro.background = Vec3(1.0, 1.0, 1.0);
-  ro.ambient = 0.55;
-  ro.diffuse = 0.45;
-  const PriSummary summary = summarize_pri(*in.pri, 10);
+// The 5th and 95th percentiles: the ends of the colour scale.
+std::pair<double, double> colour_range(const PriSummary& summary) {
   double lo = 0, hi = 1;
   for (const auto& [p, v] : summary.percentiles) {
     if (p == 5.0) lo = v;
     if (p == 95.0) hi = v;
   }
-  ReportFiles out;
-  auto save = [&](const Image& img, const std::string& name) {
-    const std::string path = (fs::path(folder) / name).string();
-    img.save(path);
-    out.pictures.push_back(path);
-    return path;
-  };
+  return {lo, hi};
+}
 
-  // Overviews: the mesh by PRI, existing cameras in blue, suggestions red..yellow.
-  const double diag = scene.mesh.bounding_box().diagonal();
+// Saves a picture into the report's folder and lists it.
+void save_picture(const Image& img, const std::string& folder, const std::string& name, ReportFiles* out) {
+  const std::string path = (fs::path(folder) / name).string();
+  img.save(path);
+  out->pictures.push_back(path);
+}
+
+// What the overviews draw over the mesh (existing cameras in blue,
+// suggestions red..yellow) and the points they frame.
+struct OverviewContent {
   std::vector<FrustumOverlay> overlays;
   std::vector<Vec3> frame_points;
-  for (const Vec3& c : scene.mesh.bounding_box().corners()) frame_points.push_back(c);
+};
+
+OverviewContent overview_content(const Scene& scene, const SuggestResult& sug) {
+  OverviewContent oc;
+  const double diag = scene.mesh.bounding_box().diagonal();
+  for (const Vec3& c : scene.mesh.bounding_box().corners()) oc.frame_points.push_back(c);
   for (const auto& v : scene.views) {
     if (!v.has_image() || !v.used) continue;
     // Existing cameras are drawn but do not set the framing: a ring of
     // distant cameras would shrink the mesh to a few pixels.
-    overlays.push_back({v.camera, kExisting, 0.06 * diag * v.camera.fx / v.camera.width, 1, ""});
+    oc.overlays.push_back({v.camera, kExisting, 0.06 * diag * v.camera.fx / v.camera.width, 1, ""});
   }
   const std::size_t n_sug = sug.suggestions.size();
   for (std::size_t i = 0; i < n_sug; ++i) {
     const Suggestion& s = sug.suggestions[i];
     const double t = n_sug > 1 ? double(i) / double(n_sug - 1) : 0.0;
     const double depth = 0.2 * std::max(1e-9, s.camera.depth(s.look_at));
-    overlays.push_back({s.camera, Rgb8{255, std::uint8_t(std::lround(200 * t)), 0}, depth, 3, s.label});
-    frame_points.push_back(s.camera.center());
+    oc.overlays.push_back({s.camera, Rgb8{255, std::uint8_t(std::lround(200 * t)), 0}, depth, 3, s.label});
+    oc.frame_points.push_back(s.camera.center());
   }
-  const RenderInputs coloured_inputs{&coloured, &caster, nullptr, nullptr, &coloured.face_colors};
-  const double azimuths[2] = {35.0, 215.0};
-  for (int k = 0; k < 2; ++k) {
-    const PinholeCamera viewer = overview_camera(frame_points, azimuths[k], 35.0, in.image_width, in.image_height);
-    Image img = render(coloured_inputs, viewer, ro);
-    draw_frustums(img, viewer, overlays);
-    draw_color_scale(img, lo, hi, "PRI (" + measure_name(in.pri_options.measure) + ")");
-    save(img, "overview_" + std::to_string(k + 1) + ".png");
-    report_progress(progress, 0.2 * (k + 1), "report");
-  }
+  return oc;
+}
 
-  // The top suggestions as their cameras would see the mesh, worst faces in magenta.
-  const int n_views = std::min<int>(in.suggestion_views, int(n_sug));
-  for (int i = 0; i < n_views; ++i) {
-    const Suggestion& s = sug.suggestions[std::size_t(i)];
-    TriangleMesh highlighted = coloured;
-    for (int f : sug.regions[std::size_t(s.region)].faces) highlighted.face_colors[std::size_t(f)] = kHighlight;
-    const RenderInputs hin{&highlighted, &caster, nullptr, nullptr, &highlighted.face_colors};
-    save(render(hin, scaled(s.camera, 640), ro), s.label + ".png");
-    report_progress(progress, 0.4 + 0.5 * (i + 1) / std::max(1, n_views), "report");
-  }
-  save(histogram_image(in.pri->pri, 30, 640, 300, "PRI of observed faces (" + measure_name(in.pri_options.measure) + ")"),
-       "histogram.png");
+// An embedded picture of the report's folder, with its caption and link.
+void write_picture(std::ostream& h, const std::string& folder, const std::string& name,
+                   const std::string& alt) {
+  const std::string data = io::read_file((fs::path(folder) / name).string());
+  h << "<figure><img alt=\"" << html_escape(alt) << "\" src=\"data:image/png;base64," << base64(data)
+    << "\"><figcaption>" << html_escape(alt) << " (<a href=\"" << name << "\">" << name << "</a>)</figcaption></figure>\n";
+}
 
-  // The page.
-  std::ostringstream h;
-  auto picture = [&](const std::string& name, const std::string& alt) {
-    const std::string data = io::read_file((fs::path(folder) / name).string());
-    h << "<figure><img alt=\"" << html_escape(alt) << "\" src=\"data:image/png;base64," << base64(data)
-      << "\"><figcaption>" << html_escape(alt) << " (<a href=\"" << name << "\">" << name << "</a>)</figcaption></figure>\n";
-  };
+void write_head(std::ostream& h, const ReportInputs& in) {
+  const Scene& scene = *in.scene;
   h << "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>MeshNBV report</title>\n<style>"
        "body{font-family:sans-serif;max-width:1100px;margin:2em auto;color:#222}"
        "table{border-collapse:collapse;margin:1em 0}td,th{border:1px solid #bbb;padding:3px 8px;text-align:right}"
@@ -172,11 +149,15 @@ ReportFiles write_report(const ReportInputs& in, const std::string& folder,
     << scene.mesh.num_faces() << " faces, " << scene.views.size() << " views ("
     << in.pri->views_used << " with images used). Method: Morreale, Romanoni, Matteucci, "
     << "<i>Predicting the Next Best View for 3D Mesh Refinement</i> (2018).</p>\n";
+}
+
+void write_pri_section(std::ostream& h, const std::string& folder, const PriSummary& summary,
+                       std::pair<double, double> range) {
   h << "<h2>Where the mesh is poorly reconstructed</h2>\n<p>Faces coloured by PRI from green (best, "
-    << general(lo) << ") to red (worst, " << general(hi) << "; 5th and 95th percentiles), grey where no two views "
+    << general(range.first) << ") to red (worst, " << general(range.second) << "; 5th and 95th percentiles), grey where no two views "
     << "see a face. Blue: the existing cameras. Red to yellow: the suggested next views, best first.</p>\n<div class=\"row\">\n";
-  picture("overview_1.png", "Overview from one side");
-  picture("overview_2.png", "Overview from the other side");
+  write_picture(h, folder, "overview_1.png", "Overview from one side");
+  write_picture(h, folder, "overview_2.png", "Overview from the other side");
   h << "</div>\n<table><tr><th class=l>faces</th><th>observed</th><th>unobserved</th><th>textureless</th></tr><tr><td class=l>"
     << summary.faces << "</td><td>" << summary.observed << "</td><td>" << summary.unobserved << "</td><td>"
     << summary.textureless << "</td></tr></table>\n<table><tr>";
@@ -184,7 +165,11 @@ ReportFiles write_report(const ReportInputs& in, const std::string& folder,
   h << "</tr><tr>";
   for (const auto& [p, v] : summary.percentiles) h << "<td>" << general(v) << "</td>";
   h << "</tr></table>\n";
-  picture("histogram.png", "PRI histogram");
+  write_picture(h, folder, "histogram.png", "PRI histogram");
+}
+
+void write_suggestions_section(std::ostream& h, const std::string& folder, const SuggestResult& sug,
+                               int n_views) {
   h << "<h2>Where to take the next photos</h2>\n<table><tr><th>rank</th><th class=l>label</th><th class=l>from</th>"
        "<th>region</th><th>energy</th><th>occlusion</th><th>focus</th><th>parallax</th><th>incidence</th>"
        "<th>worst faces seen</th><th class=l>centre</th></tr>\n";
@@ -204,24 +189,84 @@ ReportFiles write_report(const ReportInputs& in, const std::string& folder,
   h << ".</p>\n<div class=\"row\">\n";
   for (int i = 0; i < n_views; ++i) {
     const auto& s = sug.suggestions[std::size_t(i)];
-    picture(s.label + ".png", s.label + " as its camera would see the mesh; worst faces in magenta");
+    write_picture(h, folder, s.label + ".png", s.label + " as its camera would see the mesh; worst faces in magenta");
   }
-  // Every option of the two tables, under its one name (options.h).
-  auto option_rows = [&h](const char* what, const auto& options, const auto& table) {
-    h << "<table><tr><th class=l>" << what << "</th><th class=l>value</th></tr>";
-    for (const auto& spec : table)
-      h << "<tr><td class=l>" << html_escape(spec.name) << "</td><td class=l>"
-        << html_escape(option_value_text(spec.get(options))) << "</td></tr>";
-    h << "</table>\n";
-  };
-  h << "</div>\n<h2>Inputs, options and timings</h2>\n";
-  option_rows("PRI option", in.pri_options, pri_option_table());
-  option_rows("suggestion option", in.suggest_options, suggest_option_table());
+  h << "</div>\n";
+}
+
+// Every option of the two tables, under its one name (options.h).
+template <class Options>
+void write_option_rows(std::ostream& h, const char* what, const Options& options,
+                       const OptionTable<Options>& table) {
+  h << "<table><tr><th class=l>" << what << "</th><th class=l>value</th></tr>";
+  for (const auto& spec : table)
+    h << "<tr><td class=l>" << html_escape(spec.name) << "</td><td class=l>"
+      << html_escape(option_value_text(spec.get(options))) << "</td></tr>";
+  h << "</table>\n";
+}
+
+void write_inputs_section(std::ostream& h, const ReportInputs& in) {
+  h << "<h2>Inputs, options and timings</h2>\n";
+  write_option_rows(h, "PRI option", in.pri_options, pri_option_table());
+  write_option_rows(h, "suggestion option", in.suggest_options, suggest_option_table());
   h << "<table><tr><th class=l>step</th><th>seconds</th></tr>";
   for (const auto& [step, sec] : in.timings) h << "<tr><td class=l>" << html_escape(step) << "</td><td>" << fixed(sec) << "</td></tr>";
   h << "</table>\n<table><tr><th class=l>file</th><th class=l>what</th></tr>";
   for (const auto& [file, what] : in.files) h << "<tr><td class=l><a href=\"" << html_escape(file) << "\">" << html_escape(file) << "</a></td><td class=l>" << html_escape(what) << "</td></tr>";
-  h << "</table>\n</body></html>\n";
+  h << "</table>\n";
+}
+
+}  // namespace
+
+ReportFiles write_report(const ReportInputs& in, const std::string& folder,
+                         const ProgressCallback& progress) {
+  if (!in.scene || !in.pri || !in.suggestions) throw Error("report: missing scene, PRI or suggestions");
+  fs::create_directories(folder);
+  const Scene& scene = *in.scene;
+  const SuggestResult& sug = *in.suggestions;
+  const TriangleMesh coloured = mesh_with_pri(scene.mesh, *in.pri);
+  const RayCaster caster(scene.mesh);
+  RenderOptions ro;
+  ro.background = Vec3(1.0, 1.0, 1.0);
+  ro.ambient = 0.55;
+  ro.diffuse = 0.45;
+  const PriSummary summary = summarize_pri(*in.pri, 10);
+  const auto [lo, hi] = colour_range(summary);
+  ReportFiles out;
+
+  // Overviews: the mesh by PRI and the cameras.
+  const OverviewContent oc = overview_content(scene, sug);
+  const RenderInputs coloured_inputs{&coloured, &caster, nullptr, nullptr, &coloured.face_colors};
+  const double azimuths[2] = {35.0, 215.0};
+  for (int k = 0; k < 2; ++k) {
+    const PinholeCamera viewer = overview_camera(oc.frame_points, azimuths[k], 35.0, in.image_width, in.image_height);
+    Image img = render(coloured_inputs, viewer, ro);
+    draw_frustums(img, viewer, oc.overlays);
+    draw_color_scale(img, lo, hi, "PRI (" + measure_name(in.pri_options.measure) + ")");
+    save_picture(img, folder, "overview_" + std::to_string(k + 1) + ".png", &out);
+    report_progress(progress, 0.2 * (k + 1), "report");
+  }
+
+  // The top suggestions as their cameras would see the mesh, worst faces in magenta.
+  const int n_views = std::min<int>(in.suggestion_views, int(sug.suggestions.size()));
+  for (int i = 0; i < n_views; ++i) {
+    const Suggestion& s = sug.suggestions[std::size_t(i)];
+    TriangleMesh highlighted = coloured;
+    for (int f : sug.regions[std::size_t(s.region)].faces) highlighted.face_colors[std::size_t(f)] = kHighlight;
+    const RenderInputs hin{&highlighted, &caster, nullptr, nullptr, &highlighted.face_colors};
+    save_picture(render(hin, scaled(s.camera, 640), ro), folder, s.label + ".png", &out);
+    report_progress(progress, 0.4 + 0.5 * (i + 1) / std::max(1, n_views), "report");
+  }
+  save_picture(histogram_image(in.pri->pri, 30, 640, 300, "PRI of observed faces (" + measure_name(in.pri_options.measure) + ")"),
+               folder, "histogram.png", &out);
+
+  // The page.
+  std::ostringstream h;
+  write_head(h, in);
+  write_pri_section(h, folder, summary, {lo, hi});
+  write_suggestions_section(h, folder, sug, n_views);
+  write_inputs_section(h, in);
+  h << "</body></html>\n";
   out.html = (fs::path(folder) / "report.html").string();
   io::write_atomically(out.html, [&](std::ostream& o) { o << h.str(); });
   report_progress(progress, 1.0, "report");
