@@ -35,12 +35,14 @@
 
 #include <nlohmann/json.hpp>
 
+#include "meshnbv/eval/ranking.h"
 #include "meshnbv/pri.h"
 #include "meshnbv/raycaster.h"
 #include "meshnbv/renderer.h"
 #include "meshnbv/synth/generators.h"
 #include "meshnbv/synth/project.h"
 #include "meshnbv/texture.h"
+#include "pri_quality_scene.h"
 
 using namespace meshnbv;
 using json = nlohmann::ordered_json;
@@ -55,44 +57,8 @@ double now_s() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
 
-// Average ranks (1-based), ties sharing their mean rank (as the test).
-std::vector<double> ranks(const std::vector<double>& v) {
-  std::vector<std::size_t> idx(v.size());
-  std::iota(idx.begin(), idx.end(), 0);
-  std::sort(idx.begin(), idx.end(), [&](std::size_t a, std::size_t b) { return v[a] < v[b]; });
-  std::vector<double> r(v.size());
-  for (std::size_t i = 0; i < idx.size();) {
-    std::size_t j = i;
-    while (j + 1 < idx.size() && v[idx[j + 1]] == v[idx[i]]) ++j;
-    for (std::size_t k = i; k <= j; ++k) r[idx[k]] = 0.5 * double(i + j) + 1.0;
-    i = j + 1;
-  }
-  return r;
-}
-
-double spearman(const std::vector<double>& a, const std::vector<double>& b) {
-  const auto ra = ranks(a), rb = ranks(b);
-  const double ma = std::accumulate(ra.begin(), ra.end(), 0.0) / ra.size();
-  const double mb = std::accumulate(rb.begin(), rb.end(), 0.0) / rb.size();
-  double sab = 0, saa = 0, sbb = 0;
-  for (std::size_t i = 0; i < ra.size(); ++i) {
-    sab += (ra[i] - ma) * (rb[i] - mb);
-    saa += (ra[i] - ma) * (ra[i] - ma);
-    sbb += (rb[i] - mb) * (rb[i] - mb);
-  }
-  return sab / std::sqrt(saa * sbb);
-}
-
-// ROC AUC by the Mann-Whitney statistic.
-double roc_auc(const std::vector<double>& score, const std::vector<bool>& positive) {
-  const auto r = ranks(score);
-  double sum_pos = 0, n_pos = 0, n_neg = 0;
-  for (std::size_t i = 0; i < r.size(); ++i) {
-    if (positive[i]) sum_pos += r[i], ++n_pos;
-    else ++n_neg;
-  }
-  return (sum_pos - n_pos * (n_pos + 1) / 2) / (n_pos * n_neg);
-}
+using eval::roc_auc;
+using eval::spearman;
 
 // Linear-interpolation percentile (numpy's default) of unsorted values.
 double percentile(std::vector<double> v, double p) {
@@ -117,18 +83,8 @@ struct Project {
 // files: meshes, cameras and ground truth from make_synthetic_project.
 Project make_project(const std::string& scene, const std::string& degradation) {
   Project r;
-  synth::SynthOptions& o = r.options;
-  o.scene = scene;
-  o.generator.edge_length = scene == "building" ? 0.5 : 1.2;
-  o.cameras.count = 16;
-  o.cameras.layout = synth::CameraLayout::Orbit;
-  o.cameras.width = 1280;
-  o.cameras.height = 960;
-  o.render.samples_per_pixel = 1;
-  synth::Degradation d = synth::parse_degradation(degradation);
-  // The south facade of the building; the east curtain wall of the fortress.
-  d.center = scene == "building" ? Vec3(0, -3.45, 5) : Vec3(16, 0, 4);
-  o.degradations = {d};
+  r.options = test::pri_quality_options(scene, degradation);
+  const synth::SynthOptions& o = r.options;
   r.p = synth::make_synthetic_project(o);
   r.edge_length = o.generator.edge_length;
   std::vector<double> footprint;

@@ -5,52 +5,18 @@
 #include <iostream>
 #include <numeric>
 
+#include "meshnbv/eval/ranking.h"
 #include "meshnbv/pri.h"
 #include "meshnbv/synth/project.h"
+#include "pri_quality_scene.h"
 #include "test_util.h"
 
 using namespace meshnbv;
 
 namespace {
 
-// Average ranks (1-based), ties sharing their mean rank.
-std::vector<double> ranks(const std::vector<double>& v) {
-  std::vector<std::size_t> idx(v.size());
-  std::iota(idx.begin(), idx.end(), 0);
-  std::sort(idx.begin(), idx.end(), [&](std::size_t a, std::size_t b) { return v[a] < v[b]; });
-  std::vector<double> r(v.size());
-  for (std::size_t i = 0; i < idx.size();) {
-    std::size_t j = i;
-    while (j + 1 < idx.size() && v[idx[j + 1]] == v[idx[i]]) ++j;
-    for (std::size_t k = i; k <= j; ++k) r[idx[k]] = 0.5 * double(i + j) + 1.0;
-    i = j + 1;
-  }
-  return r;
-}
-
-double spearman(const std::vector<double>& a, const std::vector<double>& b) {
-  const auto ra = ranks(a), rb = ranks(b);
-  const double ma = std::accumulate(ra.begin(), ra.end(), 0.0) / ra.size();
-  const double mb = std::accumulate(rb.begin(), rb.end(), 0.0) / rb.size();
-  double sab = 0, saa = 0, sbb = 0;
-  for (std::size_t i = 0; i < ra.size(); ++i) {
-    sab += (ra[i] - ma) * (rb[i] - mb);
-    saa += (ra[i] - ma) * (ra[i] - ma);
-    sbb += (rb[i] - mb) * (rb[i] - mb);
-  }
-  return sab / std::sqrt(saa * sbb);
-}
-
-// ROC AUC of `score` for the positives, by the Mann-Whitney statistic.
-double roc_auc(const std::vector<double>& score, const std::vector<bool>& positive) {
-  const auto r = ranks(score);
-  double sum_pos = 0, n_pos = 0, n_neg = 0;
-  for (std::size_t i = 0; i < r.size(); ++i) {
-    if (positive[i]) sum_pos += r[i], ++n_pos;
-    else ++n_neg;
-  }
-  return (sum_pos - n_pos * (n_pos + 1) / 2) / (n_pos * n_neg);
-}
+using eval::roc_auc;
+using eval::spearman;
 
 struct Quality {
   double auc = 0, rho = 0, rho_region = 0;
@@ -80,22 +46,9 @@ Quality evaluate(const PriResult& r, const std::vector<float>& gt_error, double 
   return q;
 }
 
-// A synthetic project for the quality tests: 16 orbit views at 1280x960
-// (one sample per pixel: the textures are band-limited), faces of about
-// 12 px, and one degradation centred on a facade every camera ring sees.
+// A synthetic project for the quality tests (pri_quality_scene.h), on disk.
 synth::SynthProject project(const std::string& scene, const std::string& degradation) {
-  synth::SynthOptions o;
-  o.scene = scene;
-  o.generator.edge_length = scene == "building" ? 0.5 : 1.2;
-  o.cameras.count = 16;
-  o.cameras.layout = synth::CameraLayout::Orbit;
-  o.cameras.width = 1280;
-  o.cameras.height = 960;
-  o.render.samples_per_pixel = 1;
-  synth::Degradation d = synth::parse_degradation(degradation);
-  // The south facade of the building; the east curtain wall of the fortress.
-  d.center = scene == "building" ? Vec3(0, -3.45, 5) : Vec3(16, 0, 4);
-  o.degradations = {d};
+  synth::SynthOptions o = test::pri_quality_options(scene, degradation);
   o.overwrite = true;
   return synth::write_synthetic_project(o, test::temp_dir("pri_" + scene + "_" + degradation.substr(0, 4) + std::to_string(degradation.size())));
 }
