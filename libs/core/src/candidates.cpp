@@ -13,10 +13,10 @@
 namespace meshnbv {
 
 SafetyChecker::SafetyChecker(const TriangleMesh& mesh, const RayCaster& caster, double distance)
-    : mesh_(mesh), caster_(caster), distance_(distance),
-      step_(1e-6 * std::max(1e-300, mesh.bounding_box().diagonal())) {
-  // Distances to a surface of zero-area faces only would be meaningless.
+    : mesh_(mesh), caster_(caster), distance_(distance) {
   const double diagonal = mesh.bounding_box().diagonal();
+  step_ = 1e-6 * std::max(1e-300, diagonal);
+  // Distances to a surface of zero-area faces only would be meaningless.
   bool any_area = false;
   for (std::size_t f = 0; f < mesh.faces.size() && !any_area; ++f)
     any_area = mesh.face_area(f) > 1e-14 * diagonal * diagonal;
@@ -95,6 +95,10 @@ void SamplingOptions::check() const {
   SuggestOptions as_suggest;
   as_suggest.sampling = *this;
   check_options(as_suggest, suggest_option_table());
+  check_not_in_table();
+}
+
+void SamplingOptions::check_not_in_table() const {
   check_option(!distance_factors.empty() && distance_factors.size() <= 16,
                "the number of distance_factors", "in [1, 16]", double(distance_factors.size()));
   for (double f : distance_factors)
@@ -106,6 +110,10 @@ void RefineOptions::check() const {
   SuggestOptions as_suggest;
   as_suggest.refine = *this;
   check_options(as_suggest, suggest_option_table());
+  check_not_in_table();
+}
+
+void RefineOptions::check_not_in_table() const {
   check_option(position_step > 0 && position_step <= 10, "refine position_step", "in (0, 10]",
                position_step);
   check_option(angle_step > 0 && angle_step <= 90, "refine angle_step", "in (0, 90] degrees",

@@ -411,12 +411,11 @@ nlohmann::json table_json(const OptionTable<Options>& table) {
 
 template <class Options>
 std::string options_json(const Options& options, const OptionTable<Options>& table) {
-  nlohmann::json j = nlohmann::json::object();
-  for (const auto& s : table) j[s.name] = to_json(s.get(options));
-  // Table order, not nlohmann's alphabetical one: written by hand.
+  // In table order (nlohmann's object would sort the keys).
   std::string out = "{";
-  for (std::size_t i = 0; i < table.size(); ++i)
-    out += (i ? ", " : "") + nlohmann::json(table[i].name).dump() + ": " + j[table[i].name].dump();
+  for (const auto& s : table)
+    out += (out.size() > 1 ? ", " : "") + nlohmann::json(s.name).dump() + ": " +
+           to_json(s.get(options)).dump();
   return out + "}";
 }
 

@@ -30,11 +30,13 @@ std::string candidate_mode_name(CandidateMode mode) {
 }
 
 void SuggestOptions::check() const {
-  // The ranges are the option table's (options.h): one place for every front end.
+  // The ranges are the option table's (options.h): one place for every
+  // front end. The table covers the nested energy, sampling and refine
+  // fields too; only what it does not hold is checked besides.
   check_options(*this, suggest_option_table());
-  energy.check();
-  sampling.check();
-  refine.check();
+  energy.visibility.check();
+  sampling.check_not_in_table();
+  refine.check_not_in_table();
 }
 
 namespace {

@@ -41,9 +41,12 @@ struct SamplingOptions {
   std::vector<double> distance_factors = {0.75, 1.0, 1.5};  // times the median viewing distance
   std::uint64_t seed = 1;                             // rotates the spiral
 
-  // Throws Error for values out of range: directions in [1, 65536], 1 to 16
-  // distance factors, each in (0, 100].
+  // Throws Error for values out of range: directions and seed by the
+  // suggest option table (options.h), and check_not_in_table().
   void check() const;
+  // The fields no option table holds: 1 to 16 distance factors, each in
+  // (0, 100].
+  void check_not_in_table() const;
 };
 
 struct CandidateSet {
@@ -77,9 +80,12 @@ struct RefineOptions {
   double position_step = 0.1;    // initial simplex, times the distance to the region
   double angle_step = 5.0;       // initial simplex, degrees
 
-  // Throws Error for values out of range: iterations in [0, 10000],
-  // position_step in (0, 10], angle_step in (0, 90].
+  // Throws Error for values out of range: iterations by the suggest option
+  // table (refine_iterations, options.h), and check_not_in_table().
   void check() const;
+  // The fields no option table holds: position_step in (0, 10], angle_step
+  // in (0, 90].
+  void check_not_in_table() const;
 };
 
 // Nelder-Mead over position (3) and viewing direction (2); unsafe poses are
