@@ -192,10 +192,12 @@ const OptionTable<PriOptions>& pri_option_table() {
   static const OptionTable<O> table = {
       choice_option<O>(
           "measure", "Measure",
-          "Photo-consistency measure of a pair of views: ssd = mean squared difference of the "
-          "samples (the paper's choice); ncc = (1 - normalised cross-correlation) / 2, insensitive "
-          "to contrast, pairs with a textureless patch skipped",
-          {"ssd", "ncc"}, [](const O& o) { return measure_name(o.measure); },
+          "What PRI measures. ssd: mean squared difference of the samples of every pair of views "
+          "(the paper's choice); ncc: (1 - normalised cross-correlation) / 2 of every pair, "
+          "insensitive to contrast, pairs with a textureless patch skipped; offset: the distance "
+          "along the face's normal (scene units) to where its views agree best, found by "
+          "sweeping offsets of a support patch around the face (an estimate of the face's error)",
+          {"ssd", "ncc", "offset"}, [](const O& o) { return measure_name(o.measure); },
           [](O& o, const std::string& w) { o.measure = parse_measure(w); }),
       int_option<O>(
           "samples_per_side", "Samples per side",
@@ -222,6 +224,24 @@ const OptionTable<PriOptions>& pri_option_table() {
           "beyond it); 0 = sample the whole face",
           closed(0, 16, "pixels"), [](const O& o) { return o.edge_margin; },
           [](O& o, double x) { o.edge_margin = x; }),
+      real_option<O>(
+          "support_radius", "Support radius",
+          "Pixels. offset: the face is enlarged about its centroid until its inradius covers this "
+          "many pixels in its most frontal view, so that small faces are compared on enough pixels",
+          closed(0.5, 32, "pixels"), [](const O& o) { return o.support_radius; },
+          [](O& o, double x) { o.support_radius = x; }),
+      real_option<O>(
+          "offset_range", "Offset range",
+          "Pixels. offset: offsets along the normal are swept up to this disparity, in the view "
+          "where an offset moves the face most, on both sides of the face",
+          closed(0.25, 64, "pixels"), [](const O& o) { return o.offset_range; },
+          [](O& o, double x) { o.offset_range = x; }),
+      int_option<O>(
+          "offset_steps", "Offset steps",
+          "offset: hypotheses on each side of the face (2 x this + 1 in all); the step is "
+          "offset_range / offset_steps",
+          closed(1, 32), [](const O& o) { return o.offset_steps; },
+          [](O& o, std::int64_t x) { o.offset_steps = clamp_to_int(x); }),
       bool_option<O>("check_interior_occlusion", "Check interior occlusion",
                      "Besides its three vertices, the face's centroid and edge midpoints must be "
                      "unoccluded in a view (catches partial occlusion, e.g. behind a parapet)",

@@ -17,9 +17,10 @@
 
 namespace meshnbv {
 
-constexpr detail::EnumTable<Measure, 2> kMeasures = {
+constexpr detail::EnumTable<Measure, 3> kMeasures = {
     {"ssd", Measure::SSD},
     {"ncc", Measure::NCC},
+    {"offset", Measure::Offset},
 };
 
 Measure parse_measure(const std::string& name) {
@@ -76,6 +77,10 @@ double ncc_from_stats(const float* a, const PatchStats& sa, const float* b, cons
 // The lattice is never contracted to less than half the face (faces a few
 // pixels wide keep their centre half).
 constexpr double kMaxShrink = 0.5;
+// The offset measure's lattice: samples about kOffsetSpacing pixels apart,
+// at most kOffsetMaxSide per side.
+constexpr double kOffsetSpacing = 1.0;
+constexpr int kOffsetMaxSide = 16;
 
 double projected_area(const Vec2& a, const Vec2& b, const Vec2& c) {
   return 0.5 * std::abs((b - a).x() * (c - a).y() - (b - a).y() * (c - a).x());
@@ -141,6 +146,32 @@ PriFaceViews select_views(const TriangleMesh& mesh, const std::vector<Vec3>& nor
   out.samples_per_side = o.samples_per_side > 0
                              ? o.samples_per_side
                              : std::clamp(int(std::ceil(max_edge)), 2, 32);
+  if (o.measure != Measure::Offset || candidates.empty()) return out;
+
+  // The offset sweep: the reference is the most frontal view (ties: the
+  // larger projection); the step makes the fastest-moving view's projection
+  // move offset_range / offset_steps pixels per hypothesis.
+  std::size_t ref = 0;
+  for (std::size_t k = 1; k < candidates.size(); ++k)
+    if (candidates[k].angle < candidates[ref].angle ||
+        (candidates[k].angle == candidates[ref].angle && candidates[k].area > candidates[ref].area))
+      ref = k;
+  out.reference = int(ref);
+  const double keep = 1.0 - out.shrink;
+  const PinholeCamera& rc = cams[std::size_t(candidates[ref].view)];
+  out.pixel = std::max(rc.depth(centroid), 0.0) / rc.fx;
+  const Vec3& a = mesh.vertices[face[0]];
+  const double h = 1e-3 * std::max({(mesh.vertices[face[1]] - a).norm(), (mesh.vertices[face[2]] - a).norm(), 1e-12});
+  double rate = 0;  // pixels per scene unit of offset, fastest view
+  for (const auto& c : candidates) {
+    Vec2 p0, p1;
+    if (cams[std::size_t(c.view)].project(centroid, &p0) &&
+        cams[std::size_t(c.view)].project(centroid + h * normals[f], &p1))
+      rate = std::max(rate, (p1 - p0).norm() / h);
+  }
+  out.step = rate > 0 ? o.offset_range / double(o.offset_steps) / rate : 0.0;
+  if (o.samples_per_side <= 0)
+    out.samples_per_side = std::clamp(int(std::ceil(max_edge * keep / kOffsetSpacing)), 2, kOffsetMaxSide);
   return out;
 }
 
@@ -200,6 +231,17 @@ struct PriInputs {
   int channels;  // 3 with options.color, else 1 (luminance)
 };
 
+// Lattices per (face, view): one per offset hypothesis, else one.
+int hypotheses(const PriOptions& o) { return o.measure == Measure::Offset ? 2 * o.offset_steps + 1 : 1; }
+
+// Floats of one lattice of face fv, and of its (face, view) slot.
+std::size_t lattice_floats(const PriInputs& in, const PriFaceViews& fv) {
+  return lattice_points(fv.samples_per_side) * std::size_t(in.channels);
+}
+std::size_t slot_floats(const PriInputs& in, const PriFaceViews& fv) {
+  return lattice_floats(in, fv) * std::size_t(hypotheses(in.options));
+}
+
 // Consecutive faces [begin, end) and the samples of each (face, view): the
 // slots of face f are consecutive, one per view of fv[f].views.
 struct SampleBlock {
@@ -224,8 +266,7 @@ SampleBlock plan_block(const PriInputs& in, std::size_t begin) {
   block.begin = block.end = begin;
   std::size_t floats = 0;
   while (block.end < fv.size()) {
-    const std::size_t need =
-        lattice_points(fv[block.end].samples_per_side) * fv[block.end].views.size() * in.channels;
+    const std::size_t need = slot_floats(in, fv[block.end]) * fv[block.end].views.size();
     if (floats + need > budget && block.end > begin) break;
     block.offset.push_back(floats);
     floats += need;
@@ -253,13 +294,53 @@ struct ViewSampler {
   Vec3 Kt;
 };
 
-// Samples face f's lattice in one view into `slot`; NaN in slot[0] when
-// the view is unusable there (a sample behind the camera or off the image).
-inline void sample_face(const TriangleMesh& mesh, std::size_t f, const PriFaceViews& fv,
-                        const ViewSampler& view, float* slot) {
+// Samples the lattice of triangle (w0, w1, w2), rs subdivisions per side,
+// into `out`; false when a sample is behind the camera or off the image.
+inline bool sample_lattice(const ViewSampler& view, const Vec3& w0, const Vec3& w1, const Vec3& w2,
+                           int rs, float* out) {
   const FloatImage& plane = view.plane;
   const int channels = view.channels;
   const bool linear = view.linear;
+  const Vec3 h0 = view.KR * w0 + view.Kt, h1 = view.KR * w1 + view.Kt, h2 = view.KR * w2 + view.Kt;
+  if (linear && channels == 1) {
+    // Lattice point (a, b, c) with a + b + c = rs: along a row of constant
+    // a, the homogeneous projection moves by h1 - h2.
+    const Vec3 step = h1 - h2;
+    for (int a = 0; a <= rs; ++a) {
+      Vec3 h = double(a) * h0 + double(rs - a) * h2;
+      for (int b = 0; b <= rs - a; ++b, ++out, h += step) {
+        if (!(h.z() > 0)) return false;
+        const double inv = 1.0 / h.z();
+        if (!plane.sample_gray(h.x() * inv, h.y() * inv, out)) return false;
+      }
+    }
+    return true;
+  }
+  std::size_t s = 0;
+  for (int a = 0; a <= rs; ++a)
+    for (int b = 0; b <= rs - a; ++b, ++s) {
+      const int c = rs - a - b;
+      float* o = out + s * channels;
+      bool ok;
+      if (linear) {
+        const Vec3 h = double(a) * h0 + double(b) * h1 + double(c) * h2;
+        ok = h.z() > 0 && plane.sample(h.x() / h.z(), h.y() / h.z(), o);
+      } else {
+        const Vec3 X = (a * w0 + b * w1 + c * w2) / double(rs);
+        Vec2 px;
+        ok = view.cam.project(X, &px) && plane.sample(px.x(), px.y(), o);
+      }
+      if (!ok) return false;
+    }
+  return true;
+}
+
+// Samples face f's lattice in one view into `slot` (one lattice per
+// hypothesis: `hypotheses` offsets of fv.step along the normal, centred on
+// zero); NaN in slot[0] when the view is unusable there (a sample behind
+// the camera or off the image).
+inline void sample_face(const TriangleMesh& mesh, std::size_t f, const PriFaceViews& fv,
+                        const ViewSampler& view, int hypotheses, float* slot) {
   const int rs = fv.samples_per_side;
   const Face& face = mesh.faces[f];
   const Vec3 &v0 = mesh.vertices[face[0]], &v1 = mesh.vertices[face[1]], &v2 = mesh.vertices[face[2]];
@@ -268,36 +349,17 @@ inline void sample_face(const TriangleMesh& mesh, std::size_t f, const PriFaceVi
   const double keep = 1.0 - fv.shrink;
   const Vec3 g = (v0 + v1 + v2) / 3.0;
   const Vec3 w0 = g + keep * (v0 - g), w1 = g + keep * (v1 - g), w2 = g + keep * (v2 - g);
-  const Vec3 h0 = view.KR * w0 + view.Kt, h1 = view.KR * w1 + view.Kt, h2 = view.KR * w2 + view.Kt;
   bool ok = true;
-  if (linear && channels == 1) {
-    // Lattice point (a, b, c) with a + b + c = rs: along a row of constant
-    // a, the homogeneous projection moves by h1 - h2.
-    const Vec3 step = h1 - h2;
-    float* out = slot;
-    for (int a = 0; a <= rs && ok; ++a) {
-      Vec3 h = double(a) * h0 + double(rs - a) * h2;
-      for (int b = 0; b <= rs - a; ++b, ++out, h += step) {
-        if (!(h.z() > 0)) { ok = false; break; }
-        const double inv = 1.0 / h.z();
-        if (!plane.sample_gray(h.x() * inv, h.y() * inv, out)) { ok = false; break; }
-      }
-    }
+  if (hypotheses == 1) {
+    ok = sample_lattice(view, w0, w1, w2, rs, slot);
   } else {
-    std::size_t s = 0;
-    for (int a = 0; a <= rs && ok; ++a)
-      for (int b = 0; b <= rs - a && ok; ++b, ++s) {
-        const int c = rs - a - b;
-        float* out = slot + s * channels;
-        if (linear) {
-          const Vec3 h = double(a) * h0 + double(b) * h1 + double(c) * h2;
-          ok = h.z() > 0 && plane.sample(h.x() / h.z(), h.y() / h.z(), out);
-        } else {
-          const Vec3 X = (a * w0 + b * w1 + c * w2) / double(rs);
-          Vec2 px;
-          ok = view.cam.project(X, &px) && plane.sample(px.x(), px.y(), out);
-        }
-      }
+    const Vec3 n = (v1 - v0).cross(v2 - v0).normalized();
+    const std::size_t floats = lattice_points(rs) * std::size_t(view.channels);
+    const int half = hypotheses / 2;
+    for (int k = 0; k < hypotheses && ok; ++k) {
+      const Vec3 d = double(k - half) * fv.step * n;
+      ok = sample_lattice(view, w0 + d, w1 + d, w2 + d, rs, slot + std::size_t(k) * floats);
+    }
   }
   if (!ok) slot[0] = std::numeric_limits<float>::quiet_NaN();  // view unusable here
 }
@@ -315,8 +377,8 @@ void sample_view(const PriInputs& in, const SampleBlock& block, std::size_t i) {
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, faces.size()), [&](const auto& r) {
     for (std::size_t j = r.begin(); j < r.end(); ++j) {
       const auto [f, k] = faces[j];
-      const std::size_t floats = lattice_points(fv[f].samples_per_side) * in.channels;
-      sample_face(in.scene.mesh, f, fv[f], view, block.slot(f, std::size_t(k), floats));
+      sample_face(in.scene.mesh, f, fv[f], view, hypotheses(in.options),
+                  block.slot(f, std::size_t(k), slot_floats(in, fv[f])));
     }
   });
 }
@@ -349,28 +411,169 @@ PairErrors pair_errors(const std::vector<const float*>& patches, std::size_t n, 
   return e;
 }
 
-// PRI, views and status of every face of the block from its samples.
+// The offset measure on a face's patches (each `hypotheses` lattices of n
+// floats; `ref` the reference view's): for every hypothesis the mean NCC
+// error of the other views against the reference, then the hypothesis of
+// least error, refined by a parabola through it and its neighbours. Sets
+// e.sum to the offset in steps (signed) and e.pairs to the views compared
+// at zero offset; e.pairs = 0 when the reference or every other view is
+// textureless at zero offset.
+PairErrors offset_errors(const std::vector<const float*>& patches, std::size_t ref, std::size_t n,
+                         int hypotheses, const PriOptions& o, std::vector<double>* costs) {
+  PairErrors e;
+  const int half = hypotheses / 2;
+  costs->assign(std::size_t(hypotheses), std::numeric_limits<double>::infinity());
+  for (int k = 0; k < hypotheses; ++k) {
+    const std::size_t at = std::size_t(k) * n;
+    const PatchStats sr = patch_stats(patches[ref] + at, n, o.textureless_variance);
+    if (sr.textureless) continue;
+    double sum = 0;
+    std::size_t count = 0;
+    for (std::size_t i = 0; i < patches.size(); ++i) {
+      if (i == ref) continue;
+      const PatchStats si = patch_stats(patches[i] + at, n, o.textureless_variance);
+      if (si.textureless) continue;
+      sum += ncc_from_stats(patches[ref] + at, sr, patches[i] + at, si, n);
+      ++count;
+    }
+    if (count > 0) (*costs)[std::size_t(k)] = sum / double(count);
+    if (k == half) e.pairs = count;
+  }
+  if (e.pairs == 0) return e;
+  const std::vector<double>& c = *costs;
+  const int best = int(std::min_element(c.begin(), c.end()) - c.begin());
+  double frac = 0;
+  if (best > 0 && best + 1 < hypotheses && std::isfinite(c[best - 1]) && std::isfinite(c[best + 1])) {
+    const double curvature = c[best - 1] - 2 * c[best] + c[best + 1];
+    if (curvature > 0) frac = std::clamp(0.5 * (c[best - 1] - c[best + 1]) / curvature, -0.5, 0.5);
+  }
+  e.sum = double(best - half) + frac;
+  return e;
+}
+
+// Mean standard deviation of the patches (n floats each, at `at`).
+float texture_of(const std::vector<const float*>& patches, std::size_t at, std::size_t n) {
+  double sum = 0;
+  for (const float* p : patches) {
+    double mean = 0, ss = 0;
+    for (std::size_t k = 0; k < n; ++k) mean += p[at + k];
+    mean /= double(n);
+    for (std::size_t k = 0; k < n; ++k) ss += (p[at + k] - mean) * (p[at + k] - mean);
+    sum += std::sqrt(ss / double(n));
+  }
+  return float(sum / double(patches.size()));
+}
+
+// PRI, views, status and evidence of every face of the block from its samples.
 void score_block(const PriInputs& in, const SampleBlock& block, PriResult* result) {
   const std::vector<PriFaceViews>& fv = in.selection.faces;
+  const int hyps = hypotheses(in.options);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(block.begin, block.end), [&](const auto& r) {
     std::vector<const float*> patches;
     std::vector<PatchStats> stats;
+    std::vector<double> costs;
     for (std::size_t f = r.begin(); f < r.end(); ++f) {
-      const std::size_t n = lattice_points(fv[f].samples_per_side) * in.channels;
+      const std::size_t n = lattice_floats(in, fv[f]);
+      const std::size_t stride = slot_floats(in, fv[f]);
       patches.clear();
+      std::size_t ref = 0;
       for (std::size_t k = 0; k < fv[f].views.size(); ++k) {
-        const float* slot = block.slot(f, k, n);
-        if (!std::isnan(slot[0])) patches.push_back(slot);
+        const float* slot = block.slot(f, k, stride);
+        if (std::isnan(slot[0])) continue;
+        if (int(k) == fv[f].reference) ref = patches.size();
+        patches.push_back(slot);
       }
       result->pri_views[f] = int(patches.size());
+      result->pri_samples[f] = int(lattice_points(fv[f].samples_per_side));
       if (patches.size() < 2) continue;  // unobserved
-      const PairErrors e = pair_errors(patches, n, in.options, &stats);
+      result->pri_texture[f] = texture_of(patches, std::size_t(hyps / 2) * n, n);
+      const bool offset = in.options.measure == Measure::Offset;
+      const PairErrors e = offset ? offset_errors(patches, ref, n, hyps, in.options, &costs)
+                                  : pair_errors(patches, n, in.options, &stats);
+      result->pri_pairs[f] = int(e.pairs);
       if (e.pairs == 0) {
         result->status[f] = FaceStatus::Textureless;
         continue;
       }
-      result->pri[f] = float(e.sum / double(e.pairs));
+      // offset: signed here; smooth_offsets() averages and takes the magnitude.
+      result->pri[f] = offset ? float(e.sum * fv[f].step) : float(e.sum / double(e.pairs));
       result->status[f] = FaceStatus::Observed;
+    }
+  });
+}
+
+// Faces around each vertex (CSR: faces of vertex v at [start[v], start[v+1])).
+struct VertexFaces {
+  std::vector<std::size_t> start;
+  std::vector<std::uint32_t> faces;
+  explicit VertexFaces(const TriangleMesh& mesh) : start(mesh.vertices.size() + 1, 0) {
+    for (const Face& face : mesh.faces)
+      for (int k = 0; k < 3; ++k) ++start[std::size_t(face[k]) + 1];
+    for (std::size_t v = 0; v + 1 < start.size(); ++v) start[v + 1] += start[v];
+    std::vector<std::size_t> fill(start.begin(), start.end() - 1);
+    faces.resize(start.back());
+    for (std::size_t f = 0; f < mesh.faces.size(); ++f)
+      for (int k = 0; k < 3; ++k) faces[fill[std::size_t(mesh.faces[f][k])]++] = std::uint32_t(f);
+  }
+};
+
+// The faces connected to f through shared vertices whose centroids lie
+// within `radius` of f's (f and the faces around its vertices always), at
+// most kMaxSupportFaces, sorted.
+constexpr std::size_t kMaxSupportFaces = 512;
+void support_faces(const TriangleMesh& mesh, const VertexFaces& vf, std::size_t f, double radius,
+                   std::vector<std::uint32_t>* out, std::vector<std::uint32_t>* frontier) {
+  out->assign(1, std::uint32_t(f));
+  frontier->assign(1, std::uint32_t(f));
+  const Vec3 c = mesh.face_centroid(f);
+  std::vector<std::uint32_t> next;
+  for (bool first = true; !frontier->empty() && out->size() < kMaxSupportFaces; first = false) {
+    next.clear();
+    for (std::uint32_t g : *frontier)
+      for (int k = 0; k < 3; ++k) {
+        const std::size_t v = std::size_t(mesh.faces[g][k]);
+        for (std::size_t i = vf.start[v]; i < vf.start[v + 1]; ++i) {
+          const std::uint32_t h = vf.faces[i];
+          if (std::binary_search(out->begin(), out->end(), h)) continue;
+          if (!first && (mesh.face_centroid(h) - c).norm() > radius) continue;
+          out->insert(std::upper_bound(out->begin(), out->end(), h), h);
+          next.push_back(h);
+        }
+      }
+    frontier->swap(next);
+  }
+}
+
+// The offset measure's support: each observed face's signed offset becomes
+// the Gaussian-weighted mean (sigma = support_radius pixels of the face's
+// reference view, on the distance between centroids, cut at 2 sigma) over
+// the observed faces connected to it within that distance; PRI is its
+// magnitude.
+void smooth_offsets(const TriangleMesh& mesh, const PriViewSelection& selection, const PriOptions& o,
+                    PriResult* result) {
+  const std::size_t F = mesh.num_faces();
+  const std::vector<float> signed_offset = result->pri;
+  const VertexFaces vf(mesh);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, F), [&](const auto& r) {
+    std::vector<std::uint32_t> near, frontier;
+    for (std::size_t f = r.begin(); f < r.end(); ++f) {
+      if (result->status[f] != FaceStatus::Observed) continue;
+      const double sigma = o.support_radius * selection.faces[f].pixel;
+      if (!(sigma > 0)) {
+        result->pri[f] = std::abs(signed_offset[f]);
+        continue;
+      }
+      support_faces(mesh, vf, f, 2 * sigma, &near, &frontier);
+      const Vec3 c = mesh.face_centroid(f);
+      double sum = 0, weight = 0;
+      for (std::uint32_t g : near) {
+        if (result->status[g] != FaceStatus::Observed) continue;
+        const double d2 = (mesh.face_centroid(g) - c).squaredNorm();
+        const double w = std::exp(-d2 / (2 * sigma * sigma));
+        sum += w * signed_offset[g];
+        weight += w;
+      }
+      result->pri[f] = float(std::abs(sum / weight));
     }
   });
 }
@@ -396,6 +599,9 @@ PriResult compute_pri(const Scene& scene, const PriOptions& options,
   result.pri.assign(F, std::numeric_limits<float>::quiet_NaN());
   result.pri_views.assign(F, 0);
   result.status.assign(F, FaceStatus::Unobserved);
+  result.pri_pairs.assign(F, 0);
+  result.pri_samples.assign(F, 0);
+  result.pri_texture.assign(F, std::numeric_limits<float>::quiet_NaN());
   result.views_used = selection.image_views.size();
 
   const int threads = options.threads > 0 ? options.threads : tbb::this_task_arena::max_concurrency();
@@ -411,6 +617,7 @@ PriResult compute_pri(const Scene& scene, const PriOptions& options,
       score_block(in, block, &result);
       begin = block.end;
     }
+    if (options.measure == Measure::Offset) smooth_offsets(scene.mesh, selection, options, &result);
   });
   count_statuses(&result);
   report_progress(progress, 1.0, "pri");

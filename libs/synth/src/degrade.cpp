@@ -45,7 +45,7 @@ namespace meshnbv::synth {
 
 namespace {
 
-constexpr const char* kKinds = "noise, dent, bump, hole or decimate";
+constexpr const char* kKinds = "noise, dent, bump, hole, decimate or field";
 
 double default_strength(DegradationKind kind) {
   switch (kind) {
@@ -54,11 +54,13 @@ double default_strength(DegradationKind kind) {
     case DegradationKind::Bump: return 0.02;
     case DegradationKind::Hole: return 0.0;
     case DegradationKind::Decimate: return 0.8;
+    case DegradationKind::Field: return 0.002;
   }
   return 0.0;
 }
 
 double default_radius(DegradationKind kind) {
+  if (kind == DegradationKind::Field) return 0.03;
   return kind == DegradationKind::Hole ? 0.08 : 0.15;
 }
 
@@ -106,6 +108,7 @@ std::string degradation_name(DegradationKind kind) {
     case DegradationKind::Bump: return "bump";
     case DegradationKind::Hole: return "hole";
     case DegradationKind::Decimate: return "decimate";
+    case DegradationKind::Field: return "field";
   }
   return "unknown";
 }
@@ -128,7 +131,8 @@ Degradation parse_degradation(const std::string& text) {
   const std::string& name = fields[0];
   bool known = false;
   for (DegradationKind kind : {DegradationKind::Noise, DegradationKind::Dent, DegradationKind::Bump,
-                               DegradationKind::Hole, DegradationKind::Decimate})
+                               DegradationKind::Hole, DegradationKind::Decimate,
+                               DegradationKind::Field})
     if (name == degradation_name(kind)) {
       d.kind = kind;
       known = true;
@@ -286,6 +290,42 @@ void displace_region(TriangleMesh& mesh, const Degradation& d, const Vec3& cente
     }
     if (offset[g] != Vec3::Zero()) mesh.vertices[v] += offset[g];
   }
+}
+
+// Field: a smooth displacement along the normals over the whole mesh, a sum
+// of Gaussian bumps of random sign and size (standard deviations in
+// [0.5, 1.5] x radius, about one bump per radius^2 of the bounding box's
+// surface), scaled so that its largest magnitude is the amplitude, plus
+// Gaussian noise of a quarter of the amplitude per vertex.
+void displace_field(TriangleMesh& mesh, const Degradation& d, double diagonal, Random& random) {
+  const VertexGroups groups = group_vertices(mesh);
+  const std::size_t n_groups = groups.normals.size();
+  std::vector<Vec3> position(n_groups);
+  for (std::size_t v = 0; v < mesh.vertices.size(); ++v) position[groups.group[v]] = mesh.vertices[v];
+  const double radius = d.radius * diagonal;
+  const BoundingBox box = mesh.bounding_box();
+  const Vec3 e = box.max - box.min;
+  const double area = 2 * (e.x() * e.y() + e.y() * e.z() + e.z() * e.x());
+  const int bumps = std::clamp(int(std::ceil(area / (radius * radius))), 4, 4000);
+  std::vector<double> field(n_groups, 0.0);
+  for (int b = 0; b < bumps; ++b) {
+    const Vec3 centre = random_surface_point(mesh, random);
+    const double sigma = radius * (0.5 + random.uniform());
+    const double sign = random.uniform() < 0.5 ? -1.0 : 1.0;
+    const double inv = 1.0 / (2 * sigma * sigma);
+    for (std::size_t g = 0; g < n_groups; ++g) {
+      const double r2 = (position[g] - centre).squaredNorm();
+      if (r2 < 16 * sigma * sigma) field[g] += sign * std::exp(-r2 * inv);
+    }
+  }
+  double peak = 0;
+  for (double x : field) peak = std::max(peak, std::abs(x));
+  const double amplitude = d.strength * diagonal;
+  std::vector<Vec3> offset(n_groups);
+  for (std::size_t g = 0; g < n_groups; ++g)
+    offset[g] = (amplitude * (peak > 0 ? field[g] / peak : 0.0) + 0.25 * amplitude * random.normal()) *
+                groups.normals[g];
+  for (std::size_t v = 0; v < mesh.vertices.size(); ++v) mesh.vertices[v] += offset[groups.group[v]];
 }
 
 // Keeps the faces with keep[f], drops the vertices no longer referenced and
@@ -450,6 +490,10 @@ DegradeResult degrade(const TriangleMesh& truth, const std::vector<Degradation>&
     if (d.kind == DegradationKind::Decimate) {
       std::size_t rejected = 0;  // not reported: DegradeResult has no field for it
       result.mesh = decimate(result.mesh, d.strength, rejected);
+      continue;
+    }
+    if (d.kind == DegradationKind::Field) {
+      displace_field(result.mesh, d, diagonal, random);
       continue;
     }
     const Vec3 center =

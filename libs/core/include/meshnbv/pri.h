@@ -16,8 +16,13 @@
 
 namespace meshnbv {
 
-enum class Measure { SSD, NCC };
-Measure parse_measure(const std::string& name);  // "ssd" | "ncc"
+// SSD and NCC: the SPEC's pairwise patch comparisons. Offset (beyond the
+// paper, docs/deviations.md): the distance along the face's normal from the
+// face to the position where its views agree best, found by a sweep of
+// offsets (plane-sweep stereo on a support patch around the face); in
+// scene units, so it estimates the face's error itself.
+enum class Measure { SSD, NCC, Offset };
+Measure parse_measure(const std::string& name);  // "ssd" | "ncc" | "offset"
 std::string measure_name(Measure measure);
 
 enum class FaceStatus : std::uint8_t {
@@ -50,6 +55,16 @@ struct PriOptions {
   // background across a silhouette -- which differ between views even for
   // a perfect mesh. 0 = the SPEC's lattice over the whole face.
   double edge_margin = 0.5;  // pixels
+  // offset: each face's signed offset is averaged with those of the faces
+  // around its vertices, with Gaussian weights of this standard deviation
+  // (pixels in the face's reference view) on the distance between
+  // centroids: a support region for faces of a few pixels. 0 = none.
+  double support_radius = 4.0;  // pixels
+  // offset: offsets swept along the normal, up to this disparity (pixels in
+  // the view where a normal offset moves the face most), both directions.
+  double offset_range = 2.0;  // pixels
+  // offset: hypotheses per side of zero (the step is offset_range / this).
+  int offset_steps = 4;
   VisibilityOptions visibility;
 
   void check() const;  // throws Error for values out of range
@@ -59,6 +74,12 @@ struct PriResult {
   std::vector<float> pri;        // NaN where undefined
   std::vector<int> pri_views;    // views that see the face (after max_views_per_face)
   std::vector<FaceStatus> status;
+  // What each value rests on (NaN/0 where undefined), so that "bad" can be
+  // told from "not enough evidence":
+  std::vector<int> pri_pairs;      // comparisons averaged: view pairs (ssd, ncc), views against the reference (offset)
+  std::vector<int> pri_samples;    // samples per view (lattice points)
+  std::vector<float> pri_texture;  // texture strength: standard deviation of the samples
+                                   // (intensity in [0, 1]), mean over the compared views
   std::size_t observed = 0, unobserved = 0, textureless = 0;
   std::size_t views_used = 0;    // views with an image that took part
   double seconds = 0;
@@ -75,6 +96,9 @@ struct PriFaceViews {
   std::vector<int> views;    // indices into PriViewSelection::cameras, ascending
   int samples_per_side = 0;  // r of the lattice (options' value or the automatic rule)
   double shrink = 0;         // lattice contraction towards the centroid (edge_margin)
+  int reference = 0;         // offset: position in `views` of the reference view
+  double step = 0;           // offset: scene units between two hypotheses
+  double pixel = 0;          // offset: scene units per pixel at the centroid in the reference view
 };
 struct PriViewSelection {
   std::vector<std::size_t> image_views;  // scene view of each camera below

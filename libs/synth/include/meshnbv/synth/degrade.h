@@ -10,13 +10,17 @@
 
 namespace meshnbv::synth {
 
-enum class DegradationKind { Noise, Dent, Bump, Hole, Decimate };
+enum class DegradationKind { Noise, Dent, Bump, Hole, Decimate, Field };
 
 struct Degradation {
   DegradationKind kind = DegradationKind::Noise;
   // Noise: Gaussian sigma; Dent/Bump: peak displacement along the normal;
   // both as a fraction of the bounding-box diagonal. Hole: unused.
   // Decimate: fraction of faces removed (0.9 keeps 10%).
+  // Field: peak of a smooth displacement over the whole mesh (a sum of
+  // Gaussian bumps of random sign and size, scaled so that its largest
+  // magnitude is the strength) plus Gaussian noise of a quarter of it;
+  // `radius` is the bumps' mean standard deviation and `center` is unused.
   double strength = 0.01;
   // Region (all but Decimate): a ball around `center` of `radius` (fraction
   // of the diagonal, in (0, 10]). When `center` is not finite, a surface
