@@ -74,10 +74,14 @@ void add_pri_command(CLI::App& app) {
     std::cout << "faces " << s.faces << ": " << s.observed << " observed, " << s.unobserved
               << " unobserved, " << s.textureless << " textureless; " << r.views_used
               << " views; " << r.seconds << " s\n";
-    if (!s.percentiles.empty())
-      std::cout << "PRI (" << measure_name(a->options.measure) << ") median " << s.percentiles[3].second << ", 95% "
-                << s.percentiles[5].second << ", worst face " << s.worst[0].face << " ("
-                << s.worst[0].pri << ")\n";
+    if (!s.percentiles.empty()) {
+      std::cout << "PRI (" << measure_name(a->options.measure) << ", " << measure_unit(a->options.measure)
+                << ") median " << s.percentiles[3].second << ", 95% " << s.percentiles[5].second
+                << ", worst face " << s.worst[0].face << " (" << s.worst[0].pri << ")\n";
+      const PriEvidence e = pri_evidence(r);
+      std::cout << "evidence: " << e.two_views << " of " << e.observed << " observed faces rest on 2 views; "
+                << e.low_texture << " on low texture (below " << e.low_texture_below << ")\n";
+    }
     std::cout << "mesh with PRI: " << a->out << "\n";
     if (!a->json.empty()) std::cout << "summary: " << a->json << "\n";
   });

@@ -19,22 +19,48 @@
 #include "meshnbv/pri.h"
 
 #include <algorithm>
+#include <string>
+#include <vector>
 
 vtkStandardNewMacro(vtkMeshNBVPRIFilter);
 
 namespace
 {
+// The words of the table's `measure` option, in the order of MeasureType
+// (ssd, ncc, offset): the VTK value is the word's position.
+const std::vector<std::string>& MeasureWords()
+{
+  for (const auto& spec : meshnbv::pri_option_table())
+  {
+    if (spec.name == "measure")
+    {
+      return spec.choices;
+    }
+  }
+  throw meshnbv::Error("the PRI option table has no measure");
+}
+
+bool KnownMeasure(int measure)
+{
+  return measure >= 0 && static_cast<std::size_t>(measure) < MeasureWords().size();
+}
+
 // The properties as the core's options, unchecked (PrintSelf shows what is
-// set, in range or not).
+// set, in range or not; an unknown Measure keeps the core's default).
 meshnbv::PriOptions RawOptionsOf(vtkMeshNBVPRIFilter* f)
 {
   meshnbv::PriOptions o;
-  o.measure = f->GetMeasure() == vtkMeshNBVPRIFilter::NCC ? meshnbv::Measure::NCC
-                                                          : meshnbv::Measure::SSD;
+  if (KnownMeasure(f->GetMeasure()))
+  {
+    o.measure = meshnbv::parse_measure(MeasureWords()[static_cast<std::size_t>(f->GetMeasure())]);
+  }
   o.samples_per_side = f->GetSamplesPerSide();
   o.max_views_per_face = f->GetMaxViewsPerFace();
   o.max_incidence_angle = f->GetMaxIncidenceAngle();
   o.edge_margin = f->GetEdgeMargin();
+  o.support_radius = f->GetSupportRadius();
+  o.offset_range = f->GetOffsetRange();
+  o.offset_steps = f->GetOffsetSteps();
   o.check_interior_occlusion = f->GetCheckInteriorOcclusion() != 0;
   o.color = f->GetColor() != 0;
   o.textureless_variance = f->GetTexturelessVariance();
@@ -46,14 +72,24 @@ meshnbv::PriOptions RawOptionsOf(vtkMeshNBVPRIFilter* f)
 meshnbv::PriOptions OptionsOf(vtkMeshNBVPRIFilter* f)
 {
   const int measure = f->GetMeasure();
-  if (measure != vtkMeshNBVPRIFilter::SSD && measure != vtkMeshNBVPRIFilter::NCC)
+  if (!KnownMeasure(measure))
   {
-    throw meshnbv::Error(
-      "Measure must be 0 (SSD) or 1 (NCC), got " + std::to_string(measure));
+    throw meshnbv::Error("Measure must be 0 (SSD), 1 (NCC) or 2 (OFFSET), got " +
+      std::to_string(measure));
   }
   meshnbv::PriOptions o = RawOptionsOf(f);
   o.check();
   return o;
+}
+
+template <class Array, class Values>
+void AddCellArray(vtkPolyData* output, const std::string& name, const Values& values)
+{
+  vtkNew<Array> array;
+  array->SetName(name.c_str());
+  array->SetNumberOfTuples(static_cast<vtkIdType>(values.size()));
+  std::copy(values.begin(), values.end(), array->GetPointer(0));
+  output->GetCellData()->AddArray(array);
 }
 } // namespace
 
@@ -61,14 +97,22 @@ meshnbv::PriOptions OptionsOf(vtkMeshNBVPRIFilter* f)
 vtkMeshNBVPRIFilter::vtkMeshNBVPRIFilter()
   : PRIArrayName("PRI")
   , PRIViewsArrayName("PRIViews")
+  , PRIPairsArrayName("PRIPairs")
+  , PRISamplesArrayName("PRISamples")
+  , PRITextureArrayName("PRITexture")
 {
   // The defaults are the core's, so that the three front ends agree.
   const meshnbv::PriOptions defaults;
-  this->Measure = defaults.measure == meshnbv::Measure::NCC ? NCC : SSD;
+  const std::vector<std::string>& words = MeasureWords();
+  this->Measure = static_cast<int>(
+    std::find(words.begin(), words.end(), meshnbv::measure_name(defaults.measure)) - words.begin());
   this->SamplesPerSide = defaults.samples_per_side;
   this->MaxViewsPerFace = defaults.max_views_per_face;
   this->MaxIncidenceAngle = defaults.max_incidence_angle;
   this->EdgeMargin = defaults.edge_margin;
+  this->SupportRadius = defaults.support_radius;
+  this->OffsetRange = defaults.offset_range;
+  this->OffsetSteps = defaults.offset_steps;
   this->CheckInteriorOcclusion = defaults.check_interior_occlusion;
   this->Color = defaults.color;
   this->TexturelessVariance = defaults.textureless_variance;
@@ -82,7 +126,8 @@ vtkMeshNBVPRIFilter::~vtkMeshNBVPRIFilter() = default;
 //------------------------------------------------------------------------------
 const char* vtkMeshNBVPRIFilter::GetMeasureAsString()
 {
-  return this->Measure == NCC ? "ncc" : "ssd";
+  return KnownMeasure(this->Measure) ? MeasureWords()[static_cast<std::size_t>(this->Measure)].c_str()
+                                      : "unknown";
 }
 
 //------------------------------------------------------------------------------
@@ -130,17 +175,12 @@ int vtkMeshNBVPRIFilter::RequestData(
     const meshnbv::PriResult result = meshnbv::compute_pri(scene, options,
       vtkMeshNBV::MakeProgressCallback(this, { { "visibility", 0.2 }, { "pri", 0.8 } }));
 
-    vtkNew<vtkFloatArray> pri;
-    pri->SetName(this->PRIArrayName.c_str());
-    pri->SetNumberOfTuples(static_cast<vtkIdType>(result.pri.size()));
-    std::copy(result.pri.begin(), result.pri.end(), pri->GetPointer(0));
-    vtkNew<vtkIntArray> count;
-    count->SetName(this->PRIViewsArrayName.c_str());
-    count->SetNumberOfTuples(static_cast<vtkIdType>(result.pri_views.size()));
-    std::copy(result.pri_views.begin(), result.pri_views.end(), count->GetPointer(0));
     output->ShallowCopy(input);
-    output->GetCellData()->AddArray(pri);
-    output->GetCellData()->AddArray(count);
+    AddCellArray<vtkFloatArray>(output, this->PRIArrayName, result.pri);
+    AddCellArray<vtkIntArray>(output, this->PRIViewsArrayName, result.pri_views);
+    AddCellArray<vtkIntArray>(output, this->PRIPairsArrayName, result.pri_pairs);
+    AddCellArray<vtkIntArray>(output, this->PRISamplesArrayName, result.pri_samples);
+    AddCellArray<vtkFloatArray>(output, this->PRITextureArrayName, result.pri_texture);
   }
   catch (const meshnbv::Cancelled&)
   {
@@ -168,4 +208,7 @@ void vtkMeshNBVPRIFilter::PrintSelf(ostream& os, vtkIndent indent)
   }
   os << indent << "PRIArrayName: " << this->PRIArrayName << "\n";
   os << indent << "PRIViewsArrayName: " << this->PRIViewsArrayName << "\n";
+  os << indent << "PRIPairsArrayName: " << this->PRIPairsArrayName << "\n";
+  os << indent << "PRISamplesArrayName: " << this->PRISamplesArrayName << "\n";
+  os << indent << "PRITextureArrayName: " << this->PRITextureArrayName << "\n";
 }

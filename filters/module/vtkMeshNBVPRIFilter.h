@@ -8,7 +8,9 @@
  * Next Best View for 3D Mesh Refinement" (2018). Each face is sampled on a
  * barycentric lattice, the samples are projected into every view that sees
  * the face, and the patches of every pair of views are compared (SSD or
- * NCC). Higher is worse; faces seen by fewer than two views get NaN. The
+ * NCC), or the offset along the normal where the views agree best is
+ * found (OFFSET, in scene units). Higher is worse; faces seen by fewer
+ * than two views get NaN. The
  * work is done by the MeshNBV core (meshnbv::compute_pri, docs/pri.md);
  * this class only converts data.
  *
@@ -20,9 +22,15 @@
  * components) are converted once and handed to the core in memory: no file
  * is written or read for them.
  *
- * Output: the mesh with two cell arrays, PRI (float, NaN where undefined)
- * and PRIViews (int, the views compared per face), named by
- * PRIArrayName and PRIViewsArrayName.
+ * Output: the mesh with the cell arrays PRI (float, NaN where undefined),
+ * PRIViews (int, the views compared per face), and what each value rests
+ * on: PRIPairs (int, comparisons averaged: view pairs for SSD/NCC, views
+ * against the reference for OFFSET), PRISamples (int, samples per view) and
+ * PRITexture (float, mean standard deviation of the samples, intensity in
+ * [0, 1]; NaN where fewer than 2 views), named by PRIArrayName,
+ * PRIViewsArrayName, PRIPairsArrayName, PRISamplesArrayName and
+ * PRITextureArrayName. The same values as the PLY of `meshnbv pri`
+ * (quality, pri_views, pri_pairs, pri_samples, pri_texture).
  *
  * The options carry the names and defaults of the core, the command line
  * (`meshnbv pri`) and the JSON summary, in CamelCase. Progress is reported
@@ -50,20 +58,25 @@ public:
   vtkTypeMacro(vtkMeshNBVPRIFilter, vtkPolyDataAlgorithm);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
+  // The positions of the words in the core's option table (`measure`:
+  // ssd, ncc, offset), checked by the tests.
   enum MeasureType
   {
-    SSD = 0, // mean squared difference (the paper's choice)
-    NCC = 1  // (1 - normalised cross-correlation) / 2
+    SSD = 0,   // mean squared difference (the paper's choice)
+    NCC = 1,   // (1 - normalised cross-correlation) / 2
+    OFFSET = 2 // distance along the normal to where the views agree best (scene units)
   };
 
   ///@{
   /**
-   * The photo-consistency measure (`measure`): SSD or NCC.
+   * What PRI measures (`measure`): SSD, NCC or OFFSET.
+   * GetMeasureAsString gives the table's word ("ssd", "ncc", "offset").
    */
   vtkSetMacro(Measure, int);
   vtkGetMacro(Measure, int);
   void SetMeasureToSSD() { this->SetMeasure(SSD); }
   void SetMeasureToNCC() { this->SetMeasure(NCC); }
+  void SetMeasureToOffset() { this->SetMeasure(OFFSET); }
   const char* GetMeasureAsString();
   ///@}
 
@@ -102,6 +115,33 @@ public:
    */
   vtkSetMacro(EdgeMargin, double);
   vtkGetMacro(EdgeMargin, double);
+  ///@}
+
+  ///@{
+  /**
+   * OFFSET: the face is enlarged about its centroid until its inradius
+   * covers this many pixels in its most frontal view (`support_radius`).
+   */
+  vtkSetMacro(SupportRadius, double);
+  vtkGetMacro(SupportRadius, double);
+  ///@}
+
+  ///@{
+  /**
+   * OFFSET: offsets along the normal are swept up to this disparity in
+   * pixels, on both sides of the face (`offset_range`).
+   */
+  vtkSetMacro(OffsetRange, double);
+  vtkGetMacro(OffsetRange, double);
+  ///@}
+
+  ///@{
+  /**
+   * OFFSET: hypotheses on each side of the face (`offset_steps`; the step
+   * is OffsetRange / OffsetSteps).
+   */
+  vtkSetMacro(OffsetSteps, int);
+  vtkGetMacro(OffsetSteps, int);
   ///@}
 
   ///@{
@@ -152,6 +192,19 @@ public:
   vtkGetCharFromStdStringMacro(PRIViewsArrayName);
   ///@}
 
+  ///@{
+  /**
+   * Names of the evidence cell arrays (defaults "PRIPairs", "PRISamples",
+   * "PRITexture").
+   */
+  vtkSetStdStringFromCharMacro(PRIPairsArrayName);
+  vtkGetCharFromStdStringMacro(PRIPairsArrayName);
+  vtkSetStdStringFromCharMacro(PRISamplesArrayName);
+  vtkGetCharFromStdStringMacro(PRISamplesArrayName);
+  vtkSetStdStringFromCharMacro(PRITextureArrayName);
+  vtkGetCharFromStdStringMacro(PRITextureArrayName);
+  ///@}
+
   /**
    * Connect the views (input port 1).
    */
@@ -170,12 +223,18 @@ protected:
   int MaxViewsPerFace;
   double MaxIncidenceAngle;
   double EdgeMargin;
+  double SupportRadius;
+  double OffsetRange;
+  int OffsetSteps;
   vtkTypeBool CheckInteriorOcclusion;
   vtkTypeBool Color;
   double TexturelessVariance;
   int Threads;
   std::string PRIArrayName;
   std::string PRIViewsArrayName;
+  std::string PRIPairsArrayName;
+  std::string PRISamplesArrayName;
+  std::string PRITextureArrayName;
 
 private:
   vtkMeshNBVPRIFilter(const vtkMeshNBVPRIFilter&) = delete;

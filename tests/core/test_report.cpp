@@ -6,6 +6,7 @@
 #include "meshnbv/planner.h"
 #include "meshnbv/options.h"
 #include "meshnbv/report.h"
+#include "meshnbv/results.h"
 #include "meshnbv/synth/project.h"
 #include "meshnbv/visualize.h"
 #include "test_util.h"
@@ -65,7 +66,16 @@ TEST(Report, PicturesShowTheQualityMapAndTheSuggestions) {
   EXPECT_NE(html.find("data:image/png;base64,iVBORw0KGgo"), std::string::npos);
   EXPECT_NE(html.find("<td class=l>nbv_2</td>"), std::string::npos);
   EXPECT_NE(html.find("Inputs, options and timings"), std::string::npos);
-  // The report names the measure and lists every option of both tables.
+  // The report names the measure and its unit, and what PRI rests on.
+  EXPECT_NE(html.find("PRI measure <b>ssd</b>, in squared intensity."), std::string::npos);
+  const PriEvidence e = pri_evidence(pri);
+  EXPECT_GT(e.observed, 1000u);
+  EXPECT_NE(html.find("of " + std::to_string(e.observed) + " observed faces, " + std::to_string(e.two_views) +
+                      " rest on 2 views only and " + std::to_string(e.low_texture) + " on low texture"),
+            std::string::npos);
+  EXPECT_NE(html.find("<td class=l>comparisons (pri_pairs)</td>"), std::string::npos);
+  EXPECT_NE(html.find("<td class=l>texture (pri_texture)</td>"), std::string::npos);
+  // ... lists every option of both tables.
   for (const auto& spec : pri_option_table())
     EXPECT_NE(html.find("<td class=l>" + spec.name + "</td>"), std::string::npos) << spec.name;
   for (const auto& spec : suggest_option_table())

@@ -1,8 +1,10 @@
 // vtkMeshNBVPRIFilter equals the core and the CLI on the synthetic project
 // (8 orbit views, 320x240): its PRI cell array matches meshnbv::compute_pri
 // on the same scene and the `quality` of `meshnbv pri`'s PLY to 1e-6 (NaN
-// where the core has NaN), and PRIViews matches the core's view counts, for
-// the defaults and for non-default options (each option reaches the core).
+// where the core has NaN), PRIViews matches the core's view counts and
+// PRIPairs, PRISamples, PRITexture its evidence exactly (and the CLI's
+// pri_pairs, pri_samples, pri_texture), for the defaults and for
+// non-default options, offset included (each option reaches the core).
 // Pixels from the pipeline and images read by path give the same result.
 // Progress is reported in [0, 1], non-decreasing, ending at 1.
 #include "vtkCellData.h"
@@ -17,6 +19,7 @@
 
 #include "meshnbv/io/mesh_io.h"
 #include "meshnbv/io/scene_io.h"
+#include "meshnbv/options.h"
 #include "meshnbv/pri.h"
 
 #include <sstream>
@@ -101,6 +104,18 @@ int TestPRIFilter(int argc, char* argv[])
         o->threads = 1;
       },
       nullptr },
+    { "offset, support 3, range 3, steps 3", true,
+      [](vtkMeshNBVPRIFilter* f, meshnbv::PriOptions* o) {
+        f->SetMeasureToOffset();
+        f->SetSupportRadius(3);
+        f->SetOffsetRange(3);
+        f->SetOffsetSteps(3);
+        o->measure = meshnbv::Measure::Offset;
+        o->support_radius = 3;
+        o->offset_range = 3;
+        o->offset_steps = 3;
+      },
+      "pri_offset.ply" },
     { "ncc, textureless variance 3e-4", true,
       [](vtkMeshNBVPRIFilter* f, meshnbv::PriOptions* o) {
         f->SetMeasure(vtkMeshNBVPRIFilter::NCC);
@@ -143,6 +158,18 @@ int TestPRIFilter(int argc, char* argv[])
       MESHNBV_CHECK(views->GetComponent(static_cast<vtkIdType>(f), 0) == core.pri_views[f],
         c.Name << ": PRIViews of face " << f);
     }
+    // The evidence arrays are the core's, exactly (texture: NaN where the core's is).
+    const std::pair<const char*, std::vector<float>> evidence[] = {
+      { "PRIPairs", std::vector<float>(core.pri_pairs.begin(), core.pri_pairs.end()) },
+      { "PRISamples", std::vector<float>(core.pri_samples.begin(), core.pri_samples.end()) },
+      { "PRITexture", core.pri_texture },
+    };
+    for (const auto& [name, values] : evidence)
+    {
+      std::size_t defined = 0;
+      const double d = MaxDifference(out->GetCellData()->GetArray(name), values, &defined);
+      MESHNBV_CHECK(d == 0, c.Name << ": " << name << " differs from the core (" << d << ")");
+    }
     std::cout << c.Name << ": " << observed << " observed faces, max |PRI - core| = " << diff;
     if (c.CliPly)
     {
@@ -152,6 +179,15 @@ int TestPRIFilter(int argc, char* argv[])
       const double cliDiff = MaxDifference(out->GetCellData()->GetArray("PRI"), *quality, &observed);
       MESHNBV_CHECK(cliDiff >= 0 && cliDiff <= 1e-6, c.Name << ": PRI differs from the CLI by " << cliDiff);
       std::cout << ", max |PRI - CLI| = " << cliDiff;
+      for (const auto& [array, property] : { std::make_pair("PRIPairs", "pri_pairs"),
+             std::make_pair("PRISamples", "pri_samples"), std::make_pair("PRITexture", "pri_texture") })
+      {
+        const std::vector<float>* values = cli.face_attribute(property);
+        MESHNBV_CHECK(values, c.CliPly << " has no " << property);
+        std::size_t defined = 0;
+        const double d = MaxDifference(out->GetCellData()->GetArray(array), *values, &defined);
+        MESHNBV_CHECK(d == 0, c.Name << ": " << array << " differs from the CLI's " << property << " (" << d << ")");
+      }
     }
     std::cout << "\n";
 
@@ -182,6 +218,27 @@ int TestPRIFilter(int argc, char* argv[])
       printed.str().find("MaxIncidenceAngle: 80") != std::string::npos,
     "PrintSelf: " << printed.str());
 
+  // The Measure values are the positions of the table's words.
+  for (const auto& spec : meshnbv::pri_option_table())
+  {
+    if (spec.name != "measure")
+    {
+      continue;
+    }
+    MESHNBV_CHECK(spec.choices.size() == 3, "measure has " << spec.choices.size() << " words");
+    const int values[] = { vtkMeshNBVPRIFilter::SSD, vtkMeshNBVPRIFilter::NCC, vtkMeshNBVPRIFilter::OFFSET };
+    const meshnbv::Measure measures[] = { meshnbv::Measure::SSD, meshnbv::Measure::NCC, meshnbv::Measure::Offset };
+    for (std::size_t i = 0; i < 3; ++i)
+    {
+      defaults->SetMeasure(values[i]);
+      MESHNBV_CHECK(values[i] == static_cast<int>(i) && spec.choices[i] == defaults->GetMeasureAsString() &&
+          meshnbv::parse_measure(spec.choices[i]) == measures[i],
+        "Measure " << values[i] << " is " << defaults->GetMeasureAsString() << ", table " << spec.choices[i]);
+    }
+  }
+  defaults->SetMeasure(3);
+  MESHNBV_CHECK(std::string(defaults->GetMeasureAsString()) == "unknown", "Measure 3");
+
   // Array names are properties.
   vtkNew<vtkMeshNBVSceneReader> reader;
   reader->SetFileName(args.ProjectFile().c_str());
@@ -190,10 +247,14 @@ int TestPRIFilter(int argc, char* argv[])
   named->SetViewsConnection(reader->GetViewsOutputPort());
   named->SetPRIArrayName("quality");
   named->SetPRIViewsArrayName("views");
+  named->SetPRIPairsArrayName("pri_pairs");
+  named->SetPRISamplesArrayName("pri_samples");
+  named->SetPRITextureArrayName("pri_texture");
   named->Update();
-  MESHNBV_CHECK(named->GetOutput()->GetCellData()->GetArray("quality") &&
-      named->GetOutput()->GetCellData()->GetArray("views") &&
-      !named->GetOutput()->GetCellData()->GetArray("PRI"),
+  vtkCellData* cells = named->GetOutput()->GetCellData();
+  MESHNBV_CHECK(cells->GetArray("quality") && cells->GetArray("views") && !cells->GetArray("PRI") &&
+      cells->GetArray("pri_pairs") && cells->GetArray("pri_samples") && cells->GetArray("pri_texture") &&
+      !cells->GetArray("PRIPairs") && !cells->GetArray("PRISamples") && !cells->GetArray("PRITexture"),
     "array names");
   return EXIT_SUCCESS;
 }

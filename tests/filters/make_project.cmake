@@ -1,5 +1,5 @@
 # Fixture of the VTK tests: a small synthetic project made by the CLI
-# (building, 8 orbit views at 320x240) and the CLI's PRI for two option
+# (building, 8 orbit views at 320x240) and the CLI's PRI for three option
 # sets, which the tests compare with the filters.
 # -DMESHNBV=<meshnbv binary> -DOUT=<folder>
 file(REMOVE_RECURSE "${OUT}")
@@ -13,3 +13,5 @@ run(synth building --out "${OUT}" --views 8 --size 320x240 --layout orbit --quie
 run(pri "${OUT}/project.mlp" --out "${OUT}/pri_ssd.ply" --quiet)
 run(pri "${OUT}/project.mlp" --out "${OUT}/pri_ncc.ply" --measure ncc --samples-per-side 4
     --max-views-per-face 3 --quiet)
+run(pri "${OUT}/project.mlp" --out "${OUT}/pri_offset.ply" --measure offset --support-radius 3
+    --offset-range 3 --offset-steps 3 --quiet)

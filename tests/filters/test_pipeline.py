@@ -3,7 +3,9 @@
 Reads the synthetic project of the vtk/setup_project fixture, computes PRI,
 suggests views, writes .vtp and JSON, and asserts numbers:
 - the PRI cell array equals the CLI's (`meshnbv pri`, face `quality` of its
-  PLY) to 1e-6, NaN where the CLI has NaN, also after a .vtp round trip;
+  PLY) to 1e-6, NaN where the CLI has NaN, also after a .vtp round trip,
+  and PRIViews, PRIPairs, PRISamples, PRITexture equal its pri_views,
+  pri_pairs, pri_samples, pri_texture exactly, for ssd and for offset;
 - the suggestions table equals the JSON document the writer wrote;
 - each frustum's apex is its camera centre (C = -R^T t) and its four other
   points lie on the viewing rays of the image's outer corners (pixel
@@ -82,6 +84,19 @@ def watch_errors(algorithm):
     algorithm.AddObserver("ErrorEvent", on_error)
     algorithm.GetExecutive().AddObserver("ErrorEvent", lambda *args: None)
     return messages
+
+
+def check_evidence(mesh, cli, what):
+    """PRIViews, PRIPairs, PRISamples, PRITexture equal the CLI PLY's properties."""
+    cells = mesh.GetCellData()
+    for array, prop in (("PRIViews", "pri_views"), ("PRIPairs", "pri_pairs"),
+                        ("PRISamples", "pri_samples"), ("PRITexture", "pri_texture")):
+        values = cells.GetArray(array)
+        assert values is not None, f"{what}: no {array}"
+        assert same(vtk_to_numpy(values), cli[prop], 0.0), f"{what}: {array} differs from the CLI's {prop}"
+    observed = ~np.isnan(cli["quality"])
+    assert np.all(vtk_to_numpy(cells.GetArray("PRIPairs"))[observed] >= 1), what
+    assert np.all(vtk_to_numpy(cells.GetArray("PRISamples"))[observed] >= 3), what
 
 
 def check_frustums(frustums, table):
@@ -177,9 +192,29 @@ def main():
     cli = read_ply_faces(os.path.join(project, "pri_ssd.ply"))
     assert same(values, cli["quality"], 1e-6), "PRI differs from the CLI"
     assert np.array_equal(vtk_to_numpy(mesh.GetCellData().GetArray("PRIViews")), cli["pri_views"])
+    check_evidence(mesh, cli, "ssd")
+    n = cli["pri_views"][~np.isnan(cli["quality"])]
+    assert np.array_equal(cli["pri_pairs"][~np.isnan(cli["quality"])], n * (n - 1) / 2)
     observed = int(np.count_nonzero(~np.isnan(values)))
     print(f"PRI: {observed} of {values.size} faces observed, max |PRI - CLI| = "
           f"{np.nanmax(np.abs(values - cli['quality'])):.3g}")
+
+    # offset, with the fixture's non-default sweep: the same values as the CLI.
+    offset = vtkMeshNBVPRIFilter()
+    offset.SetInputConnection(reader.GetOutputPort(0))
+    offset.SetViewsConnection(reader.GetViewsOutputPort())
+    offset.SetMeasureToOffset()
+    offset.SetSupportRadius(3)
+    offset.SetOffsetRange(3)
+    offset.SetOffsetSteps(3)
+    offset.Update()
+    assert offset.GetMeasureAsString() == "offset" and offset.GetMeasure() == vtkMeshNBVPRIFilter.OFFSET
+    cli_offset = read_ply_faces(os.path.join(project, "pri_offset.ply"))
+    offset_pri = vtk_to_numpy(offset.GetOutput().GetCellData().GetArray("PRI"))
+    assert same(offset_pri, cli_offset["quality"], 1e-6), "offset PRI differs from the CLI"
+    check_evidence(offset.GetOutput(), cli_offset, "offset")
+    print(f"offset: {int(np.count_nonzero(~np.isnan(offset_pri)))} faces observed, median "
+          f"{np.nanmedian(offset_pri):.3g} scene units, equal to the CLI with its evidence")
 
     # .vtp files; the PRI survives the round trip.
     mesh_writer = vtkXMLPolyDataWriter()

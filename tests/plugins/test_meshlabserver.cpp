@@ -79,12 +79,22 @@ std::size_t expect_pri_equals_cli(const std::string& dir, const std::string& pro
   const Process ml = meshlabserver("-p " + quote(dir + "/" + project) + " -s " + quote(script("compute_pri")) +
                                    " -o " + quote(dir + "/ml_pri.ply") + " -m fq fc");
   EXPECT_EQ(ml.status, 0) << ml.output;
-  EXPECT_NE(ml.output.find("Compute PRI (ssd): 14188 faces"), std::string::npos) << ml.output;
+  EXPECT_NE(ml.output.find("Compute PRI (ssd, squared intensity): 14188 faces"), std::string::npos)
+      << ml.output;
   EXPECT_NE(ml.output.find("PRI percentiles: p0"), std::string::npos) << ml.output;
   const Process cli = meshnbv_cli("pri " + quote(dir + "/" + project) + " --out " +
-                                  quote(dir + "/cli_pri.ply") + " --quiet");
+                                  quote(dir + "/cli_pri.ply") + " --json " +
+                                  quote(dir + "/cli_pri.json") + " --quiet");
   EXPECT_EQ(cli.status, 0) << cli.output;
   if (ml.status != 0 || cli.status != 0) return 0;
+  // The log's evidence counts are the CLI summary's.
+  std::ifstream summary(dir + "/cli_pri.json");
+  const nlohmann::json evidence = nlohmann::json::parse(summary)["evidence"];
+  const std::string counts =
+      "PRI evidence: " + std::to_string(evidence["two_views"].get<int>()) + " of " +
+      std::to_string(evidence["observed"].get<int>()) + " observed faces rest on 2 views; " +
+      std::to_string(evidence["low_texture"].get<int>()) + " on low texture (below 0.01)";
+  EXPECT_NE(ml.output.find(counts), std::string::npos) << counts << "\n" << ml.output;
 
   const TriangleMesh a = io::read_mesh(dir + "/ml_pri.ply");
   const TriangleMesh b = io::read_mesh(dir + "/cli_pri.ply");

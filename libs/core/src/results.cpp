@@ -8,6 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "meshnbv/error.h"
 #include "meshnbv/options.h"
 
 using nlohmann::json;
@@ -30,12 +31,88 @@ json energy_json(const EnergyTerms& e) {
 }
 
 
+// Every per-face vector of a result holds one value per face.
+void check_sizes(const PriResult& r) {
+  const std::size_t n = r.pri.size();
+  if (r.pri_views.size() != n || r.pri_pairs.size() != n || r.pri_samples.size() != n ||
+      r.pri_texture.size() != n)
+    throw Error("PRI result: " + std::to_string(n) + " faces but " +
+                std::to_string(r.pri_views.size()) + " views, " + std::to_string(r.pri_pairs.size()) +
+                " pairs, " + std::to_string(r.pri_samples.size()) + " samples and " +
+                std::to_string(r.pri_texture.size()) + " texture values");
+}
+
+// (percent, value) at 0, 5, 25, 50, 75, 95, 100, linear between closest
+// ranks (as summarize_pri); empty for no values.
+std::vector<std::pair<double, double>> percentiles(std::vector<double> v) {
+  std::vector<std::pair<double, double>> out;
+  if (v.empty()) return out;
+  std::sort(v.begin(), v.end());
+  for (double p : {0.0, 5.0, 25.0, 50.0, 75.0, 95.0, 100.0}) {
+    const double pos = p / 100.0 * double(v.size() - 1);
+    const std::size_t i = std::size_t(pos);
+    const double frac = pos - double(i);
+    out.emplace_back(p, i + 1 < v.size() ? v[i] * (1 - frac) + v[i + 1] * frac : v[i]);
+  }
+  return out;
+}
+
+json percentiles_json(const std::vector<std::pair<double, double>>& pct) {
+  json j = json::object();
+  for (const auto& [p, v] : pct) j["p" + std::to_string(int(p))] = v;
+  return j;
+}
+
+json evidence_json(const PriEvidence& e) {
+  return {{"observed", e.observed},
+          {"two_views", e.two_views},
+          {"low_texture", e.low_texture},
+          {"low_texture_below", e.low_texture_below},
+          {"texture_percentiles", percentiles_json(e.texture_percentiles)},
+          {"pairs_percentiles", percentiles_json(e.pairs_percentiles)},
+          {"samples_percentiles", percentiles_json(e.samples_percentiles)}};
+}
+
 }  // namespace
 
+std::string measure_unit(Measure measure) {
+  switch (measure) {
+    case Measure::SSD: return "squared intensity";
+    case Measure::NCC: return "1 - rho over 2";
+    case Measure::Offset: return "scene units";
+  }
+  throw Error("unknown PRI measure " + std::to_string(int(measure)));
+}
+
+PriEvidence pri_evidence(const PriResult& result, double low_texture_below) {
+  check_sizes(result);
+  PriEvidence e;
+  e.low_texture_below = low_texture_below;
+  std::vector<double> texture, pairs, samples;
+  for (std::size_t f = 0; f < result.pri.size(); ++f) {
+    if (std::isnan(result.pri[f])) continue;
+    ++e.observed;
+    if (result.pri_views[f] == 2) ++e.two_views;
+    // NaN texture (no samples read) counts as low: there is no texture to rely on.
+    if (!(result.pri_texture[f] >= low_texture_below)) ++e.low_texture;
+    if (!std::isnan(result.pri_texture[f])) texture.push_back(result.pri_texture[f]);
+    pairs.push_back(result.pri_pairs[f]);
+    samples.push_back(result.pri_samples[f]);
+  }
+  e.texture_percentiles = percentiles(std::move(texture));
+  e.pairs_percentiles = percentiles(std::move(pairs));
+  e.samples_percentiles = percentiles(std::move(samples));
+  return e;
+}
+
 TriangleMesh mesh_with_pri(const TriangleMesh& mesh, const PriResult& result) {
+  check_sizes(result);
   TriangleMesh out = mesh;
   out.set_face_attribute("quality", result.pri);
   out.set_face_attribute("pri_views", std::vector<float>(result.pri_views.begin(), result.pri_views.end()));
+  out.set_face_attribute("pri_pairs", std::vector<float>(result.pri_pairs.begin(), result.pri_pairs.end()));
+  out.set_face_attribute("pri_samples", std::vector<float>(result.pri_samples.begin(), result.pri_samples.end()));
+  out.set_face_attribute("pri_texture", result.pri_texture);
   const PriSummary s = summarize_pri(result, 0);
   double lo = 0, hi = 1;
   for (const auto& [p, v] : s.percentiles) {
@@ -55,12 +132,19 @@ std::string pri_summary_json(const PriResult& result, const PriOptions& options,
                 {"observed", s.observed},
                 {"unobserved", s.unobserved},
                 {"textureless", s.textureless}};
+  j["measure"] = measure_name(options.measure);
+  j["unit"] = measure_unit(options.measure);
   json pct = json::object();
   for (const auto& [p, v] : s.percentiles) pct["p" + std::to_string(int(p))] = v;
   j["pri_percentiles"] = pct;
   j["histogram"] = {{"min", s.histogram_min}, {"max", s.histogram_max}, {"counts", s.histogram}};
+  j["evidence"] = evidence_json(pri_evidence(result));
   json worst = json::array();
-  for (const auto& w : s.worst) worst.push_back({{"face", w.face}, {"pri", w.pri}, {"views", w.views}});
+  for (const auto& w : s.worst) {
+    const auto f = std::size_t(w.face);
+    worst.push_back({{"face", w.face}, {"pri", w.pri}, {"views", w.views},
+                     {"pairs", result.pri_pairs[f]}, {"texture", result.pri_texture[f]}});
+  }
   j["worst_faces"] = worst;
   // Every option of the table, under its one name (options.h).
   j["options"] = json::parse(options_json(options, pri_option_table()));

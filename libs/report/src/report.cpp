@@ -151,9 +151,33 @@ void write_head(std::ostream& h, const ReportInputs& in) {
     << "<i>Predicting the Next Best View for 3D Mesh Refinement</i> (2018).</p>\n";
 }
 
+// What the observed faces' PRI rests on (pri_evidence).
+void write_evidence(std::ostream& h, const PriEvidence& e) {
+  h << "<p>What PRI rests on: of " << e.observed << " observed faces, " << e.two_views
+    << " rest on 2 views only and " << e.low_texture << " on low texture (standard deviation of the samples "
+    << "below " << general(e.low_texture_below) << " of the intensity range); a high PRI there is weak "
+    << "evidence.</p>\n";
+  if (e.pairs_percentiles.empty()) return;
+  h << "<table><tr><th class=l>per observed face</th>";
+  for (const auto& [p, v] : e.pairs_percentiles) h << "<th>p" << int(p) << "</th>";
+  h << "</tr>";
+  const std::pair<const char*, const std::vector<std::pair<double, double>>*> rows[] = {
+      {"comparisons (pri_pairs)", &e.pairs_percentiles},
+      {"samples per view (pri_samples)", &e.samples_percentiles},
+      {"texture (pri_texture)", &e.texture_percentiles}};
+  for (const auto& [name, pct] : rows) {
+    if (pct->empty()) continue;
+    h << "<tr><td class=l>" << name << "</td>";
+    for (const auto& [p, v] : *pct) h << "<td>" << general(v) << "</td>";
+    h << "</tr>";
+  }
+  h << "</table>\n";
+}
+
 void write_pri_section(std::ostream& h, const std::string& folder, const PriSummary& summary,
-                       std::pair<double, double> range) {
-  h << "<h2>Where the mesh is poorly reconstructed</h2>\n<p>Faces coloured by PRI from green (best, "
+                       std::pair<double, double> range, Measure measure, const PriEvidence& evidence) {
+  h << "<h2>Where the mesh is poorly reconstructed</h2>\n<p>PRI measure <b>" << measure_name(measure)
+    << "</b>, in " << html_escape(measure_unit(measure)) << ". Faces coloured by PRI from green (best, "
     << general(range.first) << ") to red (worst, " << general(range.second) << "; 5th and 95th percentiles), grey where no two views "
     << "see a face. Blue: the existing cameras. Red to yellow: the suggested next views, best first.</p>\n<div class=\"row\">\n";
   write_picture(h, folder, "overview_1.png", "Overview from one side");
@@ -165,6 +189,7 @@ void write_pri_section(std::ostream& h, const std::string& folder, const PriSumm
   h << "</tr><tr>";
   for (const auto& [p, v] : summary.percentiles) h << "<td>" << general(v) << "</td>";
   h << "</tr></table>\n";
+  write_evidence(h, evidence);
   write_picture(h, folder, "histogram.png", "PRI histogram");
 }
 
@@ -263,7 +288,7 @@ ReportFiles write_report(const ReportInputs& in, const std::string& folder,
   // The page.
   std::ostringstream h;
   write_head(h, in);
-  write_pri_section(h, folder, summary, {lo, hi});
+  write_pri_section(h, folder, summary, {lo, hi}, in.pri_options.measure, pri_evidence(*in.pri));
   write_suggestions_section(h, folder, sug, n_views);
   write_inputs_section(h, in);
   h << "</body></html>\n";

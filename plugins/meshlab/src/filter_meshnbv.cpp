@@ -339,16 +339,29 @@ void FilterMeshNbvPlugin::computePri(MeshDocument& document, const RichParameter
 
   const PriSummary s = summarize_pri(r, 1);
   std::ostringstream line;
-  line << "Compute PRI (" << measure_name(options.measure) << "): " << s.faces << " faces: "
-       << s.observed << " observed, " << s.unobserved << " unobserved, " << s.textureless
-       << " textureless; " << r.views_used << " raster images; " << format(r.seconds) << " s";
+  line << "Compute PRI (" << measure_name(options.measure) << ", " << measure_unit(options.measure)
+       << "): " << s.faces << " faces: " << s.observed << " observed, " << s.unobserved
+       << " unobserved, " << s.textureless << " textureless; " << r.views_used
+       << " raster images; " << format(r.seconds) << " s";
   logLine(line.str());
+  const PriEvidence e = pri_evidence(r);
+  std::ostringstream evidence;
+  evidence << "PRI evidence: " << e.two_views << " of " << e.observed
+           << " observed faces rest on 2 views; " << e.low_texture << " on low texture (below "
+           << format(e.low_texture_below) << ")";
+  if (!e.pairs_percentiles.empty())
+    evidence << "; median " << format(e.pairs_percentiles[3].second) << " comparisons, "
+             << format(e.samples_percentiles[3].second) << " samples, texture "
+             << format(e.texture_percentiles.empty() ? 0.0 : e.texture_percentiles[3].second);
+  logLine(evidence.str());
   if (!s.percentiles.empty()) {
     std::ostringstream pct;
     pct << "PRI percentiles:";
     for (const auto& [p, v] : s.percentiles) pct << " p" << int(p) << " " << format(v);
+    const auto w = std::size_t(s.worst[0].face);
     pct << "; worst face " << s.worst[0].face << " (PRI " << format(s.worst[0].pri) << ", "
-        << s.worst[0].views << " views)";
+        << s.worst[0].views << " views, " << r.pri_pairs[w] << " comparisons, texture "
+        << format(r.pri_texture[w]) << ")";
     logLine(pct.str());
   }
   logLine("face quality = PRI (NaN where undefined); face colour green (p5) .. red (p95), grey "

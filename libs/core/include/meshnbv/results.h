@@ -5,19 +5,47 @@
 
 #include <cstddef>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "meshnbv/planner.h"
 #include "meshnbv/pri.h"
 
 namespace meshnbv {
 
+// The unit of a measure's PRI values: "squared intensity" (ssd),
+// "1 - rho over 2" (ncc), "scene units" (offset).
+std::string measure_unit(Measure measure);
+
+// Below this texture strength (pri_texture: standard deviation of a face's
+// samples, intensity in [0, 1]; 0.01 = 2.55 grey levels of 255) a face's
+// PRI rests on low texture.
+constexpr double kLowTexture = 0.01;
+
+// What the observed faces' PRI rests on (PriResult's evidence), as every
+// front end reports it.
+struct PriEvidence {
+  std::size_t observed = 0;     // faces with a PRI value
+  std::size_t two_views = 0;    // ... compared on only 2 views
+  std::size_t low_texture = 0;  // ... with pri_texture below low_texture_below
+  double low_texture_below = kLowTexture;
+  // (percent, value) at 0, 5, 25, 50, 75, 95, 100 over the observed faces;
+  // empty when none is observed.
+  std::vector<std::pair<double, double>> texture_percentiles, pairs_percentiles,
+      samples_percentiles;
+};
+PriEvidence pri_evidence(const PriResult& result, double low_texture_below = kLowTexture);
+
 // Copy of `mesh` with face attributes "quality" (= PRI, NaN where
-// undefined) and "pri_views", and face colours from pri_colors() over the
-// 5th..95th percentile of the observed PRI.
+// undefined), "pri_views", and the evidence "pri_pairs", "pri_samples",
+// "pri_texture" (PriResult; counts 0 and texture NaN where undefined), and
+// face colours from pri_colors() over the 5th..95th percentile of the
+// observed PRI.
 TriangleMesh mesh_with_pri(const TriangleMesh& mesh, const PriResult& result);
 
-// The PRI summary as JSON text: counts, percentiles, histogram, the worst
-// faces, the options used and the time taken.
+// The PRI summary as JSON text: counts, the measure and its unit,
+// percentiles, histogram, the evidence (pri_evidence), the worst faces
+// with theirs, the options used and the time taken.
 std::string pri_summary_json(const PriResult& result, const PriOptions& options,
                              std::size_t worst_k = 10);
 
