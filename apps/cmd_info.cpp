@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
+#include <map>
 #include <memory>
 
 #include <nlohmann/json.hpp>
@@ -26,6 +27,35 @@ struct Range {
   }
 };
 
+// Lens models with their view counts, the image files not found, and the
+// reprojection error of the sparse points: the user's first check of an import.
+void add_import_checks(const Scene& scene, nlohmann::json* out) {
+  using nlohmann::json;
+  std::map<std::string, int> lenses;
+  json missing = json::array();
+  std::size_t num_missing = 0;
+  for (const auto& view : scene.views) {
+    ++lenses[view.camera.lens_description()];
+    std::error_code ec;
+    if (!view.image_path.empty() && !std::filesystem::exists(view.image_path, ec) &&
+        num_missing++ < 5)
+      missing.push_back(view.image_path);
+  }
+  (*out)["views"]["lenses"] = lenses;
+  (*out)["views"]["missing_images"] = num_missing;
+  (*out)["views"]["missing_images_first"] = missing;
+  if (scene.sparse_points.empty()) {
+    (*out)["sparse_points"] = nullptr;
+    return;
+  }
+  const ReprojectionStats r = reprojection_error(scene);
+  (*out)["sparse_points"] = {{"points", scene.sparse_points.size()},
+                             {"observations", r.observations},
+                             {"behind_camera", r.behind},
+                             {"reprojection_error_px",
+                              {{"median", r.median}, {"mean", r.mean}, {"max", r.max}}}};
+}
+
 nlohmann::json summarize(const Scene& scene) {
   using nlohmann::json;
   const TriangleMesh& mesh = scene.mesh;
@@ -34,6 +64,7 @@ nlohmann::json summarize(const Scene& scene) {
   json out;
   out["scene"] = scene.source;
   out["format"] = scene.format;
+  out["producer"] = scene.producer;
   json m;
   m["file"] = scene.mesh_path.empty() ? json(nullptr) : json(scene.mesh_path);
   m["vertices"] = mesh.num_vertices();
@@ -84,6 +115,7 @@ nlohmann::json summarize(const Scene& scene) {
   v["cy"] = cy.to_json();
   v["center_distance_to_mesh_box_center"] = dist.to_json();
   out["views"] = v;
+  add_import_checks(scene, &out);
   out["warnings"] = scene.warnings;
   return out;
 }
@@ -100,6 +132,8 @@ void print_text(const nlohmann::json& s) {
   const auto& m = s["mesh"];
   std::cout << "scene      " << s["scene"].get<std::string>() << " ("
             << s["format"].get<std::string>() << ")\n";
+  if (!s["producer"].get<std::string>().empty())
+    std::cout << "from       " << s["producer"].get<std::string>() << "\n";
   std::cout << "mesh       "
             << (m["file"].is_null() ? std::string("(none)") : m["file"].get<std::string>())
             << "\n";
@@ -129,6 +163,24 @@ void print_text(const nlohmann::json& s) {
             << "\n  cx       " << range(v["cx"]) << "\n  cy       " << range(v["cy"])
             << "\n  camera distance to mesh box centre " << range(v["center_distance_to_mesh_box_center"])
             << "\n";
+  for (const auto& [lens, n] : v["lenses"].items())
+    std::cout << "  lens     " << lens << " x" << n << "\n";
+  if (v["missing_images"].get<std::size_t>() > 0) {
+    std::cout << "  missing  " << v["missing_images"] << " image files not found, e.g.";
+    for (const auto& f : v["missing_images_first"]) std::cout << " " << f.get<std::string>();
+    std::cout << "\n";
+  }
+  if (!s["sparse_points"].is_null()) {
+    const auto& sp = s["sparse_points"];
+    const auto& e = sp["reprojection_error_px"];
+    std::cout << "sparse     " << sp["points"] << " points, " << sp["observations"]
+              << " observations; reprojection error through these cameras: median "
+              << num(e["median"]) << " px, mean " << num(e["mean"]) << " px, max " << num(e["max"])
+              << " px";
+    if (sp["behind_camera"].get<std::size_t>() > 0)
+      std::cout << "; " << sp["behind_camera"] << " observations behind their camera";
+    std::cout << "\n";
+  }
   for (const auto& w : s["warnings"]) std::cout << "warning: " << w.get<std::string>() << "\n";
 }
 
@@ -136,6 +188,7 @@ void print_text(const nlohmann::json& s) {
 
 void add_info_command(CLI::App& app) {
   auto input = std::make_shared<SceneInput>();
+  input->print_warnings = false;  // the summary lists them
   auto json_out = std::make_shared<std::string>();
   CLI::App* cmd = app.add_subcommand("info", "Mesh statistics and checks, and a summary of the views");
   input->add_to(cmd);

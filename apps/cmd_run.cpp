@@ -10,6 +10,7 @@
 #include "meshnbv/error.h"
 #include "meshnbv/io/file_util.h"
 #include "meshnbv/io/mesh_io.h"
+#include "meshnbv/io/scene_io.h"
 #include "meshnbv/results.h"
 #include "meshnbv/io/suggestions_io.h"
 #include "meshnbv/report.h"
@@ -72,7 +73,12 @@ void add_run_command(CLI::App& app) {
     io::write_atomically((out / "suggestions.json").string(), [&](std::ostream& o) {
       o << suggestions_json(sug, so, {a->input.path, "computed (" + measure_name(a->pri.measure) + ")"});
     });
-    io::write_suggestions_mlp(scene, sug, (out / "suggestions.mlp").string(), true);
+    // An optional output that cannot hold the lens never fails the main job.
+    const std::string no_mlp = io::mlp_unsupported_reason(scene);
+    if (no_mlp.empty())
+      io::write_suggestions_mlp(scene, sug, (out / "suggestions.mlp").string(), true);
+    else
+      std::cerr << "warning: suggestions.mlp skipped: " << no_mlp << "\n";
     io::write_ply(frustum_mesh(sug), (out / "frustums.ply").string(), ply);
     lap("write results");
 
@@ -86,9 +92,10 @@ void add_run_command(CLI::App& app) {
     r.timings = timings;
     r.files = {{"pri.ply", "mesh with face quality = PRI and PRI colours"},
                {"pri.json", "PRI summary"},
-               {"suggestions.json", "the suggested views with every energy term"},
-               {"suggestions.mlp", "MeshLab project with rasters nbv_1, nbv_2, ..."},
-               {"frustums.ply", "frustums of the suggestions, red = best"}};
+               {"suggestions.json", "the suggested views with every energy term"}};
+    if (no_mlp.empty())
+      r.files.push_back({"suggestions.mlp", "MeshLab project with rasters nbv_1, nbv_2, ..."});
+    r.files.push_back({"frustums.ply", "frustums of the suggestions, red = best"});
     const ReportFiles files = write_report(r, out.string(), bar.callback());
     bar.finish();
     std::cout << scene.mesh.num_faces() << " faces: " << pri.observed << " observed, " << pri.unobserved

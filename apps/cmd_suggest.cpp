@@ -7,6 +7,7 @@
 #include "meshnbv/error.h"
 #include "meshnbv/io/file_util.h"
 #include "meshnbv/io/mesh_io.h"
+#include "meshnbv/io/scene_io.h"
 #include "meshnbv/io/pri_io.h"
 #include "meshnbv/io/suggestions_io.h"
 #include "meshnbv/options.h"
@@ -94,8 +95,14 @@ void add_suggest_command(CLI::App& app) {
                 << " rejected inside the mesh, " << r.rejected_too_close << " too close)";
     std::cout << ", " << r.seconds << " s\nsuggestions: " << a->out << "\n";
     if (!a->mlp.empty()) {
-      io::write_suggestions_mlp(scene, r, a->mlp, a->overwrite);
-      std::cout << "MeshLab project: " << a->mlp << "\n";
+      // An optional output that cannot hold the lens never fails the main job.
+      const std::string no_mlp = io::mlp_unsupported_reason(scene);
+      if (no_mlp.empty()) {
+        io::write_suggestions_mlp(scene, r, a->mlp, a->overwrite);
+        std::cout << "MeshLab project: " << a->mlp << "\n";
+      } else {
+        std::cerr << "warning: " << a->mlp << " skipped: " << no_mlp << "\n";
+      }
     }
     if (!a->frustums.empty()) {
       io::PlyWriteOptions ply;

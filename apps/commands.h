@@ -15,6 +15,9 @@ struct SceneInput {
   std::string format = "auto";
   std::string mesh;
   std::string image_dir;
+  // Print the reader's warnings (images not found, mesh in another frame,
+  // ...) to stderr; `info` prints them itself.
+  bool print_warnings = true;
   void add_to(CLI::App* cmd);
   Scene read() const;
 };

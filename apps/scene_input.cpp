@@ -1,6 +1,7 @@
 #include "commands.h"
 
 #include <filesystem>
+#include <iostream>
 
 #include "meshnbv/io/file_util.h"
 
@@ -9,12 +10,14 @@ namespace meshnbv::cli {
 void SceneInput::add_to(CLI::App* cmd) {
   cmd->add_option("scene", path,
                   "Scene: a .mlp project, a .json scene, a Middlebury folder (*_par.txt), a COLMAP "
-                  "text model folder (cameras.txt, images.txt) or Bundler's bundle.out")
+                  "model folder (text or binary), Bundler's bundle.out, Metashape's cameras .xml, "
+                  "OpenMVG's sfm_data.json or Meshroom's .sfm / sfm.json")
       ->required();
   cmd->add_option("--format", format, "Scene format instead of guessing from the path")
-      ->check(CLI::IsMember({"auto", "mlp", "json", "middlebury", "colmap", "bundler"}));
+      ->check(CLI::IsMember({"auto", "mlp", "json", "middlebury", "colmap", "bundler", "metashape",
+                             "openmvg", "alicevision"}));
   cmd->add_option("--mesh", mesh, "Mesh (.ply, .obj, .off) to use instead of the scene's own");
-  cmd->add_option("--image-dir", image_dir, "Folder of the images (COLMAP, Bundler)");
+  cmd->add_option("--image-dir", image_dir, "Folder of the images (COLMAP, Bundler, Metashape, OpenMVG, AliceVision; the last three search it recursively by file name)");
 }
 
 Scene SceneInput::read() const {
@@ -22,7 +25,10 @@ Scene SceneInput::read() const {
   options.format = io::parse_scene_format(format);
   options.mesh_path = mesh;
   options.image_dir = image_dir;
-  return io::read_scene(path, options);
+  Scene scene = io::read_scene(path, options);
+  if (print_warnings)
+    for (const auto& w : scene.warnings) std::cerr << "warning: " << w << "\n";
+  return scene;
 }
 
 void check_colmap_output(const std::string& folder, bool overwrite) {

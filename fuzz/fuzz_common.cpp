@@ -126,7 +126,10 @@ void check_close_camera(const PinholeCamera& a, const PinholeCamera& b, double t
   FUZZ_CHECK(a.width == b.width && a.height == b.height);
   FUZZ_CHECK(close(a.fx, b.fx, tol) && close(a.fy, b.fy, tol));
   FUZZ_CHECK(close(a.cx, b.cx, tol) && close(a.cy, b.cy, tol));
-  FUZZ_CHECK(close(a.k1, b.k1, tol) && close(a.k2, b.k2, tol));
+  FUZZ_CHECK(a.lens == b.lens);
+  FUZZ_CHECK(close(a.k1, b.k1, tol) && close(a.k2, b.k2, tol) && close(a.k3, b.k3, tol));
+  FUZZ_CHECK(close(a.k4, b.k4, tol) && close(a.k5, b.k5, tol) && close(a.k6, b.k6, tol));
+  FUZZ_CHECK(close(a.p1, b.p1, tol) && close(a.p2, b.p2, tol) && close(a.skew, b.skew, tol));
   FUZZ_CHECK((a.R - b.R).norm() <= pose_tol);
   FUZZ_CHECK(close(a.center().norm(), b.center().norm(), pose_tol));
 }
@@ -242,6 +245,8 @@ void exercise_scene(const Scene& scene) {
     (void)v.camera.center();
     (void)v.camera.frustum_corners(1.0);
   }
+  const ReprojectionStats r = reprojection_error(scene);
+  FUZZ_CHECK(r.observations == 0 || (r.median >= 0 && r.median <= r.max));
   // JSON holds our camera exactly; .mlp and COLMAP convert (rounding).
   round_trip(scene, io::SceneFormat::Json, "scene.json", 0.0, 0.0);
   round_trip(scene, io::SceneFormat::Mlp, "scene.mlp", 1e-9, 2e-3);

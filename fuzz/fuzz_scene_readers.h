@@ -8,9 +8,11 @@
 
 namespace meshnbv::fuzz {
 
-inline int fuzz_scene(const std::string& path, io::SceneFormat format) {
+inline int fuzz_scene(const std::string& path, io::SceneFormat format,
+                      const std::string& image_dir = {}) {
   io::SceneReadOptions options;
   options.format = format;
+  options.image_dir = image_dir;
   Scene scene;
   try {
     scene = io::read_scene(path, options);

@@ -203,6 +203,94 @@ def bundler_seeds():
           "%%%%\nimage.png 0 4\nbroken.png\n")
 
 
+def colmap_binary_seeds():
+    # COLMAP's binary layout (libs/io/src/colmap_binary.cpp); the fixture
+    # images a.png, b.png are 8x6.
+    def cameras(entries):
+        out = struct.pack("<Q", len(entries))
+        for cid, model, params in entries:
+            out += struct.pack("<IiQQ", cid, model, 8, 6) + struct.pack("<%dd" % len(params), *params)
+        return out
+    def images(entries):
+        out = struct.pack("<Q", len(entries))
+        for iid, cid, name, pts in entries:
+            out += struct.pack("<I7dI", iid, 1, 0, 0, 0, -0.5, -0.5, 3, cid) + name + b"\0"
+            out += struct.pack("<Q", len(pts))
+            for x, y, pid in pts:
+                out += struct.pack("<ddQ", x, y, pid)
+        return out
+    points = struct.pack("<Q", 1) + struct.pack("<Q3d3BdQ", 1, 0, 0, 0, 255, 0, 0, 0.5, 2) + \
+        struct.pack("<IIII", 1, 0, 2, 0)
+    sep = b"\n%%%%\n"
+    write("colmap_binary", "opencv", cameras([(1, 4, [8, 8, 4, 3, -0.01, 0.001, 0.0001, -0.0002])]) + sep +
+          images([(1, 1, b"a.png", [(4.5, 3.5, 1)]), (2, 1, b"b.png", [(4.5, 3.5, 1)])]) + sep + points)
+    write("colmap_binary", "all_models", cameras([
+        (1, 0, [8, 4, 3]), (2, 1, [8, 8, 4, 3]), (3, 2, [8, 4, 3, 0.01]), (4, 3, [8, 4, 3, 0.01, 0]),
+        (5, 5, [8, 8, 4, 3, 0.01, 0, 0, 0]), (6, 6, [8, 8, 4, 3, 0, 0, 0, 0, 0.01, 0, 0, 0]),
+        (7, 7, [8, 8, 4, 3, 0]), (8, 8, [8, 4, 3, 0.01]), (9, 9, [8, 4, 3, 0.01, 0]),
+        (10, 10, [8, 8, 4, 3, 0, 0, 0, 0, 0, 0, 0, 0])]) + sep +
+        images([(i, i, b"a.png", []) for i in range(1, 11)]))
+
+
+def metashape_seeds():
+    sensor = ('<sensor id="{i}" label="s{i}" type="{t}"><resolution width="8" height="6"/>'
+              '<calibration type="{t}" class="adjusted"><resolution width="8" height="6"/>'
+              '<f>8</f><cx>0.1</cx><cy>-0.1</cy><b1>0.01</b1><b2>0.02</b2><k1>-0.01</k1>'
+              '<k2>0.001</k2><p1>0.0001</p1><p2>-0.0001</p2></calibration></sensor>')
+    camera = ('<camera id="{i}" sensor_id="{s}" label="{l}"{c}><transform>1 0 0 0.5 0 1 0 0.5 0 0 1 -3 '
+              '0 0 0 1</transform></camera>')
+    fisheye = sensor.format(i=1, t="fisheye").replace("<p1>0.0001</p1><p2>-0.0001</p2>", "")
+    write("metashape", "chunk",
+          '<?xml version="1.0" encoding="UTF-8"?>\n<document version="1.5.0"><chunk label="c">'
+          "<sensors>" + sensor.format(i=0, t="frame") + fisheye + "</sensors>"
+          '<components><component id="0"><transform><rotation>1 0 0 0 1 0 0 0 1</rotation>'
+          "<translation>0 0 0</translation><scale>1</scale></transform></component></components>"
+          '<cameras><group id="0" label="g">' + camera.format(i=0, s=0, l="a", c="") +
+          camera.format(i=1, s=1, l="b", c=' component_id="0"') + "</group>" +
+          '<camera id="2" sensor_id="0" label="image"/></cameras>'
+          "<transform><rotation>1 0 0 0 1 0 0 0 1</rotation><translation>1 2 3</translation>"
+          "<scale>2</scale></transform></chunk></document>\n")
+
+
+def openmvg_seeds():
+    views = ",".join(
+        '{"key": %d, "value": {"polymorphic_id": 1073741824, "ptr_wrapper": {"id": %d, "data": '
+        '{"local_path": "", "filename": "%s", "width": 8, "height": 6, "id_view": %d, '
+        '"id_intrinsic": %d, "id_pose": %d}}}}' % (i, 2147483649 + i, n, i, i, i)
+        for i, n in enumerate(["a.png", "b.png", "c.png"]))
+    intr = ('{"key": 0, "value": {"polymorphic_id": 2147483649, "polymorphic_name": "pinhole_brown_t2", '
+            '"ptr_wrapper": {"id": 2147483660, "data": {"width": 8, "height": 6, "focal_length": 8, '
+            '"principal_point": [4, 3], "disto_t2": [-0.01, 0.001, 0, 0.0001, -0.0001]}}}},'
+            '{"key": 1, "value": {"polymorphic_id": 2147483650, "polymorphic_name": "fisheye", '
+            '"ptr_wrapper": {"id": 2147483661, "data": {"width": 8, "height": 6, "focal_length": 8, '
+            '"principal_point": [4, 3], "fisheye": [0.01, 0, 0, 0]}}}}')
+    extr = ",".join('{"key": %d, "value": {"rotation": [[1, 0, 0], [0, 1, 0], [0, 0, 1]], '
+                    '"center": [0.5, 0.5, %d]}}' % (i, -3 - i) for i in range(2))
+    write("openmvg", "brown_fisheye",
+          '{"sfm_data_version": "0.3", "root_path": "images", "views": [%s], "intrinsics": [%s], '
+          '"extrinsics": [%s], "structure": [{"key": 0, "value": {"X": [0.5, 0.5, 0], '
+          '"observations": [{"key": 0, "value": {"id_feat": 1, "x": [4, 3]}}]}}], '
+          '"control_points": []}\n' % (views, intr, extr))
+
+
+def alicevision_seeds():
+    for version, focal in (("1.0.0", '"pxFocalLength": "8"'),
+                           ("1.2.5", '"focalLength": "36", "sensorWidth": "36", "pixelRatio": "1.01"')):
+        pp = '["4", "3"]' if version == "1.0.0" else '["0", "0"]'
+        write("alicevision", "v" + version.replace(".", "_"),
+              '{"version": ["%s", "%s", "%s"], "featuresFolders": [""], "views": ['
+              '{"viewId": "1", "poseId": "1", "intrinsicId": "7", "path": "C:\\\\shoot\\\\a.png", '
+              '"width": "8", "height": "6"},'
+              '{"viewId": "2", "poseId": "9", "intrinsicId": "7", "path": "/x/b.png"}],'
+              '"intrinsics": [{"intrinsicId": "7", "width": "8", "height": "6", "type": "brown", %s, '
+              '"principalPoint": %s, "distortionParams": ["-0.01", "0.001", "0", "0.0001", "0"]}],'
+              '"poses": [{"poseId": "1", "pose": {"transform": {"rotation": ["1", "0", "0", "0", "1", '
+              '"0", "0", "0", "1"], "center": ["0.5", "0.5", "-3"]}}}],'
+              '"structure": [{"landmarkId": "0", "X": ["0.5", "0.5", "0"], "observations": '
+              '[{"observationId": "1", "featureId": "3", "x": ["4", "3"]}]}]}\n'
+              % (version[0], version[2], version[4], focal, pp))
+
+
 def main():
     shutil.rmtree(SEEDS, ignore_errors=True)
     ply_seeds()
@@ -214,6 +302,10 @@ def main():
     middlebury_seeds()
     colmap_seeds()
     bundler_seeds()
+    colmap_binary_seeds()
+    metashape_seeds()
+    openmvg_seeds()
+    alicevision_seeds()
 
 
 if __name__ == "__main__":

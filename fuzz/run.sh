@@ -23,7 +23,7 @@ while getopts "b:t:j:" opt; do
 done
 shift $((OPTIND - 1))
 TARGETS=("$@")
-[ ${#TARGETS[@]} -gt 0 ] || TARGETS=(ply ply_binary obj off mlp json middlebury colmap bundler)
+[ ${#TARGETS[@]} -gt 0 ] || TARGETS=(ply ply_binary obj off mlp json middlebury colmap bundler colmap_binary metashape openmvg alicevision)
 OUT=$BUILD/fuzz
 mkdir -p "$OUT/logs"
 for t in "${TARGETS[@]}"; do

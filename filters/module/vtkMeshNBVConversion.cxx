@@ -190,7 +190,7 @@ vtkSmartPointer<vtkImageData> ToViewBlock(const meshnbv::View& view, const meshn
   AddString(fd, LabelName, view.label);
   const int size[2] = { c.width, c.height };
   AddInts(fd, ImageSizeName, size, 2);
-  const double k[9] = { c.fx, 0, c.cx, 0, c.fy, c.cy, 0, 0, 1 };
+  const double k[9] = { c.fx, c.skew, c.cx, 0, c.fy, c.cy, 0, 0, 1 };
   AddDoubles(fd, KName, k, 9);
   double r[9];
   for (int i = 0; i < 9; ++i)
@@ -201,6 +201,13 @@ vtkSmartPointer<vtkImageData> ToViewBlock(const meshnbv::View& view, const meshn
   AddDoubles(fd, TName, c.t.data(), 3);
   const double distortion[2] = { c.k1, c.k2 };
   AddDoubles(fd, DistortionName, distortion, 2);
+  if (c.lens != meshnbv::LensModel::Brown || c.k3 != 0.0 || c.k4 != 0.0 || c.k5 != 0.0 ||
+    c.k6 != 0.0 || c.p1 != 0.0 || c.p2 != 0.0)
+  {
+    const double lens[9] = { c.lens == meshnbv::LensModel::Fisheye ? 1.0 : 0.0, c.k1, c.k2, c.k3,
+      c.k4, c.k5, c.k6, c.p1, c.p2 };
+    AddDoubles(fd, LensName, lens, 9);
+  }
   const int used = view.used ? 1 : 0;
   AddInts(fd, UsedName, &used, 1);
   AddString(fd, ImagePathName, view.image_path);
@@ -261,12 +268,8 @@ meshnbv::PinholeCamera CameraOf(vtkFieldData* fd, const std::string& what)
     throw Error(what + ": no camera data (field arrays ImageSize (2), K (9), R (9) and t (3) are "
                        "needed; missing or malformed:" + missing + ")");
   }
-  if (k[1] != 0.0)
-  {
-    throw Error(what + ": K has a skew term (K[0][1] = " + std::to_string(k[1]) +
-      "); MeshNBV cameras have none");
-  }
   meshnbv::PinholeCamera c;
+  c.skew = k[1];
   c.width = static_cast<int>(size[0]);
   c.height = static_cast<int>(size[1]);
   c.fx = k[0];
@@ -283,6 +286,23 @@ meshnbv::PinholeCamera CameraOf(vtkFieldData* fd, const std::string& what)
   {
     c.k1 = distortion[0];
     c.k2 = distortion[1];
+  }
+  double lens[9];
+  if (GetTuple(fd, LensName, 9, lens))
+  {
+    if (lens[0] != 0.0 && lens[0] != 1.0)
+    {
+      throw Error(what + ": Lens[0] must be 0 (Brown-Conrady) or 1 (fisheye)");
+    }
+    c.lens = lens[0] == 1.0 ? meshnbv::LensModel::Fisheye : meshnbv::LensModel::Brown;
+    c.k1 = lens[1];
+    c.k2 = lens[2];
+    c.k3 = lens[3];
+    c.k4 = lens[4];
+    c.k5 = lens[5];
+    c.k6 = lens[6];
+    c.p1 = lens[7];
+    c.p2 = lens[8];
   }
   return c;
 }

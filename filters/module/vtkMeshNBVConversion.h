@@ -29,6 +29,9 @@ constexpr const char* KName = "K";                  // vtkDoubleArray, 9 compone
 constexpr const char* RName = "R";                  // vtkDoubleArray, 9 components, row-major
 constexpr const char* TName = "t";                  // vtkDoubleArray, 3 components
 constexpr const char* DistortionName = "Distortion";  // vtkDoubleArray, 2 components (k1, k2)
+// vtkDoubleArray, 9 components (model 0 = Brown-Conrady / 1 = fisheye, k1..k6, p1, p2);
+// written only for a lens beyond (k1, k2), and then it wins over Distortion.
+constexpr const char* LensName = "Lens";
 constexpr const char* UsedName = "Used";            // vtkIntArray, 1 value (0 / 1)
 constexpr const char* ImagePathName = "ImagePath";  // vtkStringArray, 1 value ("" = none)
 constexpr const char* PixelsName = "Pixels";        // point scalars, unsigned char or short, 1 to 4 components

@@ -91,8 +91,11 @@ bad_scene middlebury_no_images "none of the 2 images is present" pri
 bad_scene middlebury_unreadable_image "a.png: image does not decode"
 bad_scene colmap_unknown_camera "refers to camera 9"
 bad_scene colmap_truncated "images.txt:1: expected 10 fields"
-bad_scene colmap_bad_model "camera model 'FISHEYE' is not supported"
+bad_scene colmap_bad_model "unknown camera model 'FISHEYE'"
 bad_scene colmap_zero_quaternion "zero quaternion"
+bad_scene colmap_bin_truncated "number of images = 1 does not fit in the 32 bytes left"
+bad_scene colmap_bin_unknown_model "unknown camera model id 42"
+bad_scene colmap_bin_huge_count "number of images = 4611686018427387904 does not fit"
 bad_scene bundler_truncated "truncated: the file ends inside camera 1" pri
 bad_scene bundler_huge_count "declares 99999999999 cameras"
 bad_scene bundler_list_mismatch "lists 1 images but"
@@ -109,6 +112,9 @@ fails "missing.png: image file not found" run "$BAD/scenes/image_missing.json"
 # Cameras facing away from the mesh: nothing is observed, so there is nothing
 # to rank or suggest.
 fails "no observed face" run "$BAD/scenes/cameras_facing_away.json"
+# ... and the reason, plainly, before computing.
+run "$BAD/scenes/cameras_facing_away.json" 2>&1 >/dev/null | grep -q "^warning: only 0% of the mesh's faces .* another coordinate frame" \
+  || fail "cameras facing away: no warning that the mesh lies in no view"
 fails "no observed face" "$MESHNBV" suggest "$BAD/scenes/cameras_facing_away.json" --out "$OUT/s.json"
 
 # Paths that are not UTF-8 work like any other, and name themselves in errors.

@@ -489,17 +489,22 @@ TEST(Colmap, WriteRefusesToOverwrite) {
 
 TEST(Colmap, UnknownModelIsAnError) {
   const std::string dir =
-      colmap_model("colmap_unknown_model", "1 OPENCV_FISHEYE 640 480 500 500 320 240 0 0 0 0\n",
+      colmap_model("colmap_unknown_model", "1 FISHEYE 640 480 500 500 320 240 0 0 0 0\n",
                    "1 1 0 0 0 0 0 5 1 a.png\n\n");
   MESHNBV_EXPECT_ERROR_CONTAINS(io::read_colmap(dir),
-                                "cameras.txt:1: camera model 'OPENCV_FISHEYE' is not supported");
+                                "cameras.txt:1: unknown camera model 'FISHEYE' (COLMAP 3.8 models: "
+                                "SIMPLE_PINHOLE, PINHOLE");
 }
 
-TEST(Colmap, TangentialDistortionIsAnError) {
-  const std::string dir =
-      colmap_model("colmap_tangential", "1 OPENCV 640 480 500 500 320 240 0.1 0 0.001 0\n",
-                   "1 1 0 0 0 0 0 5 1 a.png\n\n");
-  MESHNBV_EXPECT_ERROR_CONTAINS(io::read_colmap(dir), "tangential distortion not supported");
+TEST(Colmap, ModelWithoutExactEquivalentIsAnErrorNamingIt) {
+  std::string dir = colmap_model("colmap_fov", "1 FOV 640 480 500 500 320 240 0.9\n",
+                                 "1 1 0 0 0 0 0 5 1 a.png\n\n");
+  MESHNBV_EXPECT_ERROR_CONTAINS(io::read_colmap(dir), "cameras.txt:1: camera model FOV (omega = 0.9");
+  dir = colmap_model("colmap_prism",
+                     "1 THIN_PRISM_FISHEYE 640 480 500 500 320 240 0.01 0 0.001 0 0 0 0 0\n",
+                     "1 1 0 0 0 0 0 5 1 a.png\n\n");
+  MESHNBV_EXPECT_ERROR_CONTAINS(io::read_colmap(dir),
+                                "camera model THIN_PRISM_FISHEYE with p1, p2, sx1 or sy1 non-zero");
 }
 
 TEST(Colmap, ImageWithUnknownCameraIdIsAnError) {

@@ -17,6 +17,7 @@
 #include "vtkStringArray.h"
 #include "vtkUnsignedCharArray.h"
 
+#include "vtkMeshNBVConversion.h"
 #include "vtkMeshNBVSceneReader.h"
 #include "vtkMeshNBVTestUtilities.h"
 
@@ -191,6 +192,30 @@ int TestSceneReader(int argc, char* argv[])
   const std::string reason = CompareView(cviews, last, candidate, withCandidate, false);
   MESHNBV_CHECK(reason.empty(), "candidate view: " << reason);
   MESHNBV_CHECK(FieldString(cviews->GetBlock(last)->GetFieldData(), "ImagePath").empty(), "candidate ImagePath");
+
+  // Every lens parameter and skew survive the view block (K[0][1], "Lens").
+  for (const bool fisheye : { false, true })
+  {
+    meshnbv::View lensView = scene.views[0];
+    lensView.image_path.clear();
+    meshnbv::PinholeCamera& lc = lensView.camera;
+    lc.lens = fisheye ? meshnbv::LensModel::Fisheye : meshnbv::LensModel::Brown;
+    lc.k1 = -0.01, lc.k2 = 0.002, lc.k3 = -0.0003, lc.k4 = 0.0001, lc.skew = 0.75;
+    if (!fisheye)
+    {
+      lc.k5 = 0.0002, lc.k6 = -0.0001, lc.p1 = 0.0004, lc.p2 = -0.0006;
+    }
+    vtkNew<vtkMultiBlockDataSet> blocks;
+    blocks->SetNumberOfBlocks(1);
+    blocks->SetBlock(0, vtkMeshNBV::ToViewBlock(lensView, nullptr));
+    const std::vector<vtkMeshNBV::ViewBlock> extracted = vtkMeshNBV::ExtractViews(blocks);
+    MESHNBV_CHECK(extracted.size() == 1, "lens view block not extracted");
+    const meshnbv::PinholeCamera& back = extracted[0].view.camera;
+    MESHNBV_CHECK(back.lens == lc.lens && back.k1 == lc.k1 && back.k2 == lc.k2 && back.k3 == lc.k3 &&
+        back.k4 == lc.k4 && back.k5 == lc.k5 && back.k6 == lc.k6 && back.p1 == lc.p1 &&
+        back.p2 == lc.p2 && back.skew == lc.skew,
+      "lens parameters lost in the view block (fisheye " << fisheye << ")");
+  }
 
   std::cout << "mesh " << mesh->GetNumberOfPoints() << " points, " << mesh->GetNumberOfPolys()
             << " triangles; " << views->GetNumberOfBlocks()

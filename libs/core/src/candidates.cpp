@@ -77,7 +77,7 @@ PinholeCamera most_common_intrinsics(const std::vector<PinholeCamera>& cameras) 
     if (n > best_n) best = &c, best_n = n;
   }
   PinholeCamera out = *best;
-  out.k1 = out.k2 = 0;
+  out.clear_lens();
   return out;
 }
 

@@ -1,5 +1,7 @@
 #include "meshnbv/scene.h"
 
+#include <algorithm>
+
 #include "meshnbv/error.h"
 
 namespace meshnbv {
@@ -47,6 +49,66 @@ void Scene::validate() const {
     v.camera.check("view '" + v.label + "'");
     check_one_source(v);
   }
+}
+
+ReprojectionStats reprojection_error(const Scene& scene) {
+  ReprojectionStats stats;
+  std::vector<double> errors;
+  for (const SparsePoint& p : scene.sparse_points)
+    for (const auto& [view, pixel] : p.observations) {
+      if (view < 0 || std::size_t(view) >= scene.views.size()) continue;
+      Vec2 projected;
+      if (!scene.views[std::size_t(view)].camera.project(p.position, &projected)) {
+        ++stats.behind;
+        continue;
+      }
+      errors.push_back((projected - pixel).norm());
+    }
+  stats.observations = errors.size();
+  if (errors.empty()) return stats;
+  double sum = 0;
+  for (double e : errors) sum += e;
+  stats.mean = sum / double(errors.size());
+  stats.max = *std::max_element(errors.begin(), errors.end());
+  const std::size_t mid = errors.size() / 2;
+  std::nth_element(errors.begin(), errors.begin() + std::ptrdiff_t(mid), errors.end());
+  stats.median = errors[mid];
+  if (errors.size() % 2 == 0)
+    stats.median = 0.5 * (stats.median + *std::max_element(errors.begin(), errors.begin() + std::ptrdiff_t(mid)));
+  return stats;
+}
+
+MeshViewCoverage mesh_view_coverage(const Scene& scene) {
+  MeshViewCoverage c;
+  const std::size_t n = scene.mesh.num_faces();
+  if (n == 0 || scene.views.empty()) return c;
+  constexpr std::size_t kMaxFaces = 20000;
+  const std::size_t step = (n + kMaxFaces - 1) / kMaxFaces;
+  for (std::size_t f = 0; f < n; f += step) {
+    const Face& face = scene.mesh.faces[f];
+    const Vec3 centroid = (scene.mesh.vertices[std::size_t(face[0])] +
+                           scene.mesh.vertices[std::size_t(face[1])] +
+                           scene.mesh.vertices[std::size_t(face[2])]) / 3.0;
+    ++c.faces_checked;
+    for (const View& v : scene.views) {
+      Vec2 px;
+      if (v.camera.project(centroid, &px) && v.camera.in_image(px)) {
+        ++c.faces_in_view;
+        break;
+      }
+    }
+  }
+  return c;
+}
+
+std::string mesh_frame_warning(const Scene& scene) {
+  const MeshViewCoverage c = mesh_view_coverage(scene);
+  if (c.faces_checked == 0 || c.share() >= 0.5) return {};
+  const int percent = int(100.0 * c.share());
+  return "only " + std::to_string(percent) + "% of the mesh's faces (" +
+         std::to_string(c.faces_in_view) + " of " + std::to_string(c.faces_checked) +
+         " checked) lie inside any camera's view: the mesh is probably in another coordinate "
+         "frame than the cameras (exported from another model or chunk, or in a projected CRS)";
 }
 
 }  // namespace meshnbv

@@ -14,6 +14,7 @@
 
 #include "meshnbv/error.h"
 #include "meshnbv/io/file_util.h"
+#include "meshnbv/io/scene_io.h"
 
 namespace fs = std::filesystem;
 
@@ -278,11 +279,7 @@ void write_known_pose_model(const std::vector<View>& views, const std::vector<lo
   for (std::size_t i = 0; i < views.size(); ++i) {
     const PinholeCamera& c = views[i].camera;
     if (written.insert(camera_ids[i]).second) {
-      cams << camera_ids[i] << (c.has_distortion() ? " OPENCV " : " PINHOLE ") << c.width << " "
-           << c.height << " " << c.fx << " " << c.fy << " " << c.cx + kPixelOffset << " "
-           << c.cy + kPixelOffset;
-      if (c.has_distortion()) cams << " " << c.k1 << " " << c.k2 << " 0 0";
-      cams << "\n";
+      cams << camera_ids[i] << " " << io::colmap_camera_text(c) << "\n";
     }
     Eigen::Quaterniond q(c.R);
     q.normalize();

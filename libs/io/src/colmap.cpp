@@ -1,13 +1,14 @@
-// COLMAP text models (cameras.txt, images.txt, points3D.txt), as written by
-// `colmap model_converter --output_type TXT` (COLMAP 3.x).
+// COLMAP models, text (cameras.txt, images.txt, points3D.txt, as written by
+// `colmap model_converter --output_type TXT`) and binary (colmap_binary.cpp),
+// COLMAP 3.x.
 //
 // Conventions, and how they map to ours:
-// - images.txt holds the world-to-camera pose: quaternion (QW QX QY QZ) of R
+// - images hold the world-to-camera pose: quaternion (QW QX QY QZ) of R
 //   and T with x_cam = R X + T, camera along +z, y down: ours unchanged.
 // - COLMAP puts the centre of the top-left pixel at (0.5, 0.5); ours is at
-//   (0, 0), so cx_ours = cx_colmap - 0.5 (same for cy), and + 0.5 on write.
-// - SIMPLE_RADIAL / RADIAL / OPENCV distort normalised coordinates with
-//   1 + k1 r^2 (+ k2 r^4): the same polynomial as ours.
+//   (0, 0), so cx_ours = cx_colmap - 0.5 (same for cy, and for the 2-D
+//   points), and + 0.5 on write.
+// - camera models: colmap_cameras.cpp.
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cctype>
@@ -22,6 +23,8 @@
 #include <tuple>
 #include <vector>
 
+#include "colmap_cameras.h"
+#include "colmap_model.h"
 #include "meshnbv/error.h"
 #include "meshnbv/io/file_util.h"
 #include "meshnbv/io/mesh_io.h"
@@ -32,36 +35,9 @@ namespace fs = std::filesystem;
 namespace meshnbv::io {
 namespace {
 
-constexpr double kPixelOffset = 0.5;  // COLMAP pixel coordinate - ours
-constexpr const char* kSupportedModels =
-    "SIMPLE_PINHOLE, PINHOLE, SIMPLE_RADIAL, RADIAL, OPENCV with p1 = p2 = 0";
-
-struct ModelSpec {
-  const char* name;
-  std::size_t num_params;
-  const char* params;
-};
-constexpr ModelSpec kModels[] = {{"SIMPLE_PINHOLE", 3, "f cx cy"},
-                                 {"PINHOLE", 4, "fx fy cx cy"},
-                                 {"SIMPLE_RADIAL", 4, "f cx cy k"},
-                                 {"RADIAL", 5, "f cx cy k1 k2"},
-                                 {"OPENCV", 8, "fx fy cx cy k1 k2 p1 p2"}};
+using colmap::kPixelOffset;
 
 // ---------------------------------------------------------------- reading
-
-struct ColmapCamera {
-  PinholeCamera intrinsics;
-  long line = -1;
-};
-
-struct ColmapImage {
-  long long id = 0;
-  long long camera_id = 0;
-  Mat3 R;
-  Vec3 t;
-  std::string name;
-  long line = -1;
-};
 
 std::vector<std::string> split_whitespace(std::string_view line) {
   std::vector<std::string> tokens;
@@ -101,37 +77,6 @@ class LineCursor {
   long number_ = 0;
 };
 
-const ModelSpec& find_model(const std::string& name, const std::string& file, long line) {
-  for (const auto& spec : kModels)
-    if (name == spec.name) return spec;
-  throw Error("camera model '" + name + "' is not supported (supported: " + kSupportedModels +
-                  "); run `colmap image_undistorter` to get a PINHOLE model",
-              file, line);
-}
-
-// Intrinsics in our convention from a model's parameter list.
-PinholeCamera intrinsics_from_params(const std::string& model, const std::vector<double>& p,
-                                     const std::string& file, long line) {
-  PinholeCamera cam;
-  const bool one_focal = model == "SIMPLE_PINHOLE" || model == "SIMPLE_RADIAL" || model == "RADIAL";
-  const std::size_t c = one_focal ? 1 : 2;  // index of cx
-  cam.fx = p[0];
-  cam.fy = one_focal ? p[0] : p[1];
-  cam.cx = p[c] - kPixelOffset;
-  cam.cy = p[c + 1] - kPixelOffset;
-  if (model == "SIMPLE_RADIAL") cam.k1 = p[3];
-  if (model == "RADIAL" || model == "OPENCV") {
-    cam.k1 = p[c + 2];
-    cam.k2 = p[c + 3];
-  }
-  if (model == "OPENCV" && (p[6] != 0.0 || p[7] != 0.0))
-    throw Error(
-        "OPENCV camera with tangential distortion (p1, p2 non-zero): tangential "
-        "distortion not supported; run `colmap image_undistorter` to get a PINHOLE model",
-        file, line);
-  return cam;
-}
-
 int parse_size(const std::string& token, const std::string& file, long line, const char* what) {
   const long long value = parse_int(token, file, line, what);
   if (value <= 0 || value > (1 << 30))
@@ -139,41 +84,48 @@ int parse_size(const std::string& token, const std::string& file, long line, con
   return static_cast<int>(value);
 }
 
-ColmapCamera parse_camera_line(const std::vector<std::string>& tokens, const std::string& file,
-                               long line) {
+colmap::Camera parse_camera_line(const std::vector<std::string>& tokens, const std::string& file,
+                                 long line) {
   if (tokens.size() < 4)
     throw Error("expected CAMERA_ID MODEL WIDTH HEIGHT PARAMS..., got " +
                     std::to_string(tokens.size()) + " fields",
                 file, line);
-  const ModelSpec& spec = find_model(tokens[1], file, line);
-  if (tokens.size() != 4 + spec.num_params)
-    throw Error("camera model " + tokens[1] + " takes " + std::to_string(spec.num_params) +
-                    " parameters (" + spec.params + "), got " + std::to_string(tokens.size() - 4),
+  const colmap::CameraModelSpec* spec = colmap::find_model(tokens[1]);
+  if (!spec)
+    throw Error("unknown camera model '" + tokens[1] + "' (COLMAP 3.8 models: " +
+                    colmap::model_names() + ")",
+                file, line);
+  if (tokens.size() != 4 + spec->num_params)
+    throw Error("camera model " + tokens[1] + " takes " + std::to_string(spec->num_params) +
+                    " parameters (" + spec->params + "), got " + std::to_string(tokens.size() - 4),
                 file, line);
   std::vector<double> params;
-  for (std::size_t i = 0; i < spec.num_params; ++i)
+  for (std::size_t i = 0; i < spec->num_params; ++i)
     params.push_back(
         parse_double(tokens[4 + i], file, line, "camera parameter " + std::to_string(i + 1)));
-  ColmapCamera cam{intrinsics_from_params(tokens[1], params, file, line), line};
-  cam.intrinsics.width = parse_size(tokens[2], file, line, "WIDTH");
-  cam.intrinsics.height = parse_size(tokens[3], file, line, "HEIGHT");
+  colmap::Camera cam;
+  cam.model = spec->name;
+  cam.line = line;
   try {
-    cam.intrinsics.check("camera " + tokens[0]);
+    cam.intrinsics = colmap::camera_from_params(*spec, params);
+    cam.intrinsics.width = parse_size(tokens[2], file, line, "WIDTH");
+    cam.intrinsics.height = parse_size(tokens[3], file, line, "HEIGHT");
+    cam.intrinsics.check("camera " + tokens[0] + " (" + spec->name + ")");
   } catch (const Error& e) {
     throw Error(e.reason(), file, line);
   }
   return cam;
 }
 
-std::map<long long, ColmapCamera> read_cameras_txt(const std::string& file) {
+std::map<long long, colmap::Camera> read_cameras_txt(const std::string& file) {
   TextTokens text(read_file(file), file);
-  std::map<long long, ColmapCamera> cameras;
+  std::map<long long, colmap::Camera> cameras;
   std::vector<std::string> tokens;
   while (text.next_line(&tokens)) {
     if (is_skippable(tokens)) continue;
     const long line = text.line();
     const long long id = parse_int(tokens[0], file, line, "CAMERA_ID");
-    ColmapCamera cam = parse_camera_line(tokens, file, line);
+    colmap::Camera cam = parse_camera_line(tokens, file, line);
     auto [it, inserted] = cameras.emplace(id, cam);
     if (!inserted)
       throw Error("camera " + tokens[0] + " is defined twice (also on line " +
@@ -193,8 +145,8 @@ Mat3 rotation_from_quaternion(double w, double x, double y, double z, const std:
   return q.toRotationMatrix();
 }
 
-ColmapImage parse_image_line(const std::vector<std::string>& tokens, const std::string& file,
-                             long line) {
+colmap::Image parse_image_line(const std::vector<std::string>& tokens, const std::string& file,
+                               long line) {
   // COLMAP reads NAME up to the next space, so names cannot hold spaces.
   if (tokens.size() != 10)
     throw Error(
@@ -205,7 +157,7 @@ ColmapImage parse_image_line(const std::vector<std::string>& tokens, const std::
   const char* names[] = {"QW", "QX", "QY", "QZ", "TX", "TY", "TZ"};
   double v[7];
   for (int i = 0; i < 7; ++i) v[i] = parse_double(tokens[1 + i], file, line, names[i]);
-  ColmapImage image;
+  colmap::Image image;
   image.id = parse_int(tokens[0], file, line, "IMAGE_ID");
   image.R = rotation_from_quaternion(v[0], v[1], v[2], v[3], file, line);
   image.t = Vec3(v[4], v[5], v[6]);
@@ -215,46 +167,64 @@ ColmapImage parse_image_line(const std::vector<std::string>& tokens, const std::
   return image;
 }
 
-// The POINTS2D line holds (X, Y, POINT3D_ID) triples, or nothing. Its
-// content is not needed, but a wrong field count means the file does not
-// alternate image and points lines (e.g. points lines left out).
-void check_points_line(std::string_view text, const ColmapImage& image, const std::string& file,
+// The POINTS2D line holds (X, Y, POINT3D_ID) triples, or nothing. A wrong
+// field count means the file does not alternate image and points lines
+// (e.g. points lines left out).
+void parse_points_line(std::string_view text, colmap::Image* image, const std::string& file,
                        long line) {
   const std::vector<std::string> tokens = split_whitespace(text);
   if (!tokens.empty() && tokens[0][0] == '#')
-    throw Error("expected the POINTS2D line of image " + std::to_string(image.id) +
+    throw Error("expected the POINTS2D line of image " + std::to_string(image->id) +
                     " (an empty line when it has none), got a comment",
                 file, line);
   if (tokens.size() % 3 != 0)
-    throw Error("expected the POINTS2D line of image " + std::to_string(image.id) +
+    throw Error("expected the POINTS2D line of image " + std::to_string(image->id) +
                     " (X Y POINT3D_ID triples, or an empty line), got " +
                     std::to_string(tokens.size()) +
                     " fields; every image takes two lines in images.txt",
                 file, line);
+  image->points2d.reserve(tokens.size() / 3);
+  for (std::size_t i = 0; i < tokens.size(); i += 3)
+    image->points2d.emplace_back(parse_double(tokens[i], file, line, "POINTS2D X"),
+                                 parse_double(tokens[i + 1], file, line, "POINTS2D Y"));
 }
 
-std::vector<ColmapImage> read_images_txt(const std::string& file) {
+std::vector<colmap::Image> read_images_txt(const std::string& file) {
   const std::string text = read_file(file);
   LineCursor cursor(text);
-  std::vector<ColmapImage> images;
+  std::vector<colmap::Image> images;
   std::string_view raw;
   while (cursor.next(&raw)) {
     const std::vector<std::string> tokens = split_whitespace(raw);
     if (is_skippable(tokens)) continue;
     images.push_back(parse_image_line(tokens, file, cursor.number()));
     // The points line follows at once; at the end of the file it may be absent.
-    if (cursor.next(&raw)) check_points_line(raw, images.back(), file, cursor.number());
+    if (cursor.next(&raw)) parse_points_line(raw, &images.back(), file, cursor.number());
   }
   if (images.empty()) throw Error("no image listed", file);
-  std::sort(images.begin(), images.end(),
-            [](const ColmapImage& a, const ColmapImage& b) { return a.id < b.id; });
-  for (std::size_t i = 1; i < images.size(); ++i)
-    if (images[i].id == images[i - 1].id)
-      throw Error("IMAGE_ID " + std::to_string(images[i].id) + " appears twice (lines " +
-                      std::to_string(std::min(images[i].line, images[i - 1].line)) + " and " +
-                      std::to_string(std::max(images[i].line, images[i - 1].line)) + ")",
-                  file);
   return images;
+}
+
+// POINT3D_ID X Y Z R G B ERROR TRACK[] as (IMAGE_ID, POINT2D_IDX).
+std::vector<colmap::Point> read_points_txt(const std::string& file) {
+  TextTokens text(read_file(file), file);
+  std::vector<colmap::Point> points;
+  std::vector<std::string> tokens;
+  while (text.next_line(&tokens)) {
+    if (is_skippable(tokens)) continue;
+    const long line = text.line();
+    if (tokens.size() < 8 || (tokens.size() - 8) % 2 != 0)
+      throw Error("expected POINT3D_ID X Y Z R G B ERROR then (IMAGE_ID POINT2D_IDX) pairs, got " +
+                      std::to_string(tokens.size()) + " fields",
+                  file, line);
+    colmap::Point p;
+    for (int k = 0; k < 3; ++k) p.position(k) = parse_double(tokens[1 + k], file, line, "X Y Z");
+    for (std::size_t i = 8; i < tokens.size(); i += 2)
+      p.track.emplace_back(parse_int(tokens[i], file, line, "IMAGE_ID"),
+                           parse_int(tokens[i + 1], file, line, "POINT2D_IDX"));
+    points.push_back(std::move(p));
+  }
+  return points;
 }
 
 bool exists_file(const fs::path& path) {
@@ -308,49 +278,90 @@ void attach_mesh(const fs::path& model, Scene* scene) {
   }
 }
 
+bool is_binary_model(const fs::path& folder) {
+  return exists_file(folder / "cameras.bin") && exists_file(folder / "images.bin");
+}
+
 fs::path model_folder(const std::string& path) {
   std::error_code ec;
   if (!fs::exists(path, ec)) throw Error("no such folder", path);
   fs::path folder(path);
-  // Accept cameras.txt / images.txt themselves as well as their folder.
+  // Accept the model's files themselves as well as their folder.
   if (!fs::is_directory(folder, ec)) folder = folder.parent_path();
   if (folder.empty()) folder = ".";
-  if (!exists_file(folder / "cameras.txt") && exists_file(folder / "cameras.bin"))
-    throw Error(
-        "binary COLMAP model (cameras.bin); convert it with `colmap model_converter "
-        "--input_path M --output_path M --output_type TXT`",
-        folder.string());
+  if (is_binary_model(folder)) return folder;
   for (const char* name : {"cameras.txt", "images.txt"})
     if (!exists_file(folder / name))
-      throw Error(std::string("not a COLMAP text model: ") + name + " missing", folder.string());
+      throw Error(std::string("not a COLMAP model: ") + name +
+                      " missing (and no cameras.bin + images.bin)",
+                  folder.string());
   return folder;
+}
+
+// Text model; as COLMAP itself, the binary one wins when a folder holds both.
+colmap::Model read_model(const fs::path& folder) {
+  if (is_binary_model(folder)) return colmap::read_binary_model(folder.string());
+  colmap::Model model;
+  model.cameras_file = (folder / "cameras.txt").string();
+  model.images_file = (folder / "images.txt").string();
+  model.points_file = (folder / "points3D.txt").string();
+  model.cameras = read_cameras_txt(model.cameras_file);
+  model.images = read_images_txt(model.images_file);
+  model.has_points = exists_file(model.points_file);
+  if (model.has_points) model.points = read_points_txt(model.points_file);
+  return model;
+}
+
+void sort_images(colmap::Model* model) {
+  auto& images = model->images;
+  std::sort(images.begin(), images.end(),
+            [](const colmap::Image& a, const colmap::Image& b) { return a.id < b.id; });
+  for (std::size_t i = 1; i < images.size(); ++i)
+    if (images[i].id == images[i - 1].id)
+      throw Error("IMAGE_ID " + std::to_string(images[i].id) + " appears twice", model->images_file,
+                  std::max(images[i].line, images[i - 1].line));
+}
+
+// The sparse points with their observations as (view, pixel) in our
+// convention; track entries naming no image or 2-D point are counted.
+void attach_sparse_points(const colmap::Model& model, Scene* scene) {
+  std::map<long long, int> view_of;
+  for (std::size_t i = 0; i < model.images.size(); ++i) view_of[model.images[i].id] = int(i);
+  std::size_t dangling = 0;
+  scene->sparse_points.reserve(model.points.size());
+  for (const colmap::Point& p : model.points) {
+    SparsePoint sp;
+    sp.position = p.position;
+    for (const auto& [image_id, idx] : p.track) {
+      const auto it = view_of.find(image_id);
+      const auto& points2d = it == view_of.end() ? std::vector<Vec2>() : model.images[std::size_t(it->second)].points2d;
+      if (it == view_of.end() || idx < 0 || std::size_t(idx) >= points2d.size()) {
+        ++dangling;
+        continue;
+      }
+      sp.observations.emplace_back(it->second, points2d[std::size_t(idx)] - Vec2(kPixelOffset, kPixelOffset));
+    }
+    scene->sparse_points.push_back(std::move(sp));
+  }
+  if (dangling)
+    scene->warnings.push_back(std::to_string(dangling) + " track entries of " + model.points_file +
+                              " name an image or 2-D point the model does not hold; ignored");
 }
 
 // ---------------------------------------------------------------- writing
 
-using IntrinsicsKey = std::tuple<int, int, double, double, double, double, double, double>;
+using IntrinsicsKey = std::pair<std::string, std::vector<double>>;
 
 IntrinsicsKey intrinsics_key(const PinholeCamera& c) {
-  return {c.width, c.height, c.fx, c.fy, c.cx, c.cy, c.k1, c.k2};
+  std::vector<double> params;
+  const colmap::CameraModelSpec& spec = colmap::model_for(c, &params);
+  params.push_back(c.width);
+  params.push_back(c.height);
+  return {spec.name, params};
 }
 
-// PINHOLE without distortion, RADIAL when one focal length, else OPENCV
-// with p1 = p2 = 0; all three read back exactly.
 std::string camera_line(int id, const PinholeCamera& c) {
-  std::ostringstream out;
-  out << std::setprecision(17) << id << ' ';
-  const double cx = c.cx + kPixelOffset, cy = c.cy + kPixelOffset;
-  if (!c.has_distortion()) {
-    out << "PINHOLE " << c.width << ' ' << c.height << ' ' << c.fx << ' ' << c.fy << ' ' << cx
-        << ' ' << cy;
-  } else if (c.fx == c.fy) {
-    out << "RADIAL " << c.width << ' ' << c.height << ' ' << c.fx << ' ' << cx << ' ' << cy << ' '
-        << c.k1 << ' ' << c.k2;
-  } else {
-    out << "OPENCV " << c.width << ' ' << c.height << ' ' << c.fx << ' ' << c.fy << ' ' << cx << ' '
-        << cy << ' ' << c.k1 << ' ' << c.k2 << " 0 0";
-  }
-  return out.str();
+  return std::to_string(id) + ' ' + colmap_camera_text(c);
 }
 
 // Whether a relative_to() result stays inside its base folder.
@@ -441,8 +452,13 @@ ColmapModelText build_model_text(const Scene& scene, const fs::path& folder) {
                   "'");
     if (!names.insert(name).second)
       throw Error(what + ": image name '" + name + "' is used twice; COLMAP needs unique names");
-    auto [it, added] =
-        camera_ids.emplace(intrinsics_key(view.camera), static_cast<int>(camera_ids.size()) + 1);
+    IntrinsicsKey key;
+    try {
+      key = intrinsics_key(view.camera);
+    } catch (const Error& e) {
+      throw Error(what + ": " + e.reason());
+    }
+    auto [it, added] = camera_ids.emplace(key, static_cast<int>(camera_ids.size()) + 1);
     if (added) text.cameras.push_back(camera_line(it->second, view.camera));
     text.images.push_back(image_line(static_cast<int>(i) + 1, it->second, view.camera, name));
   }
@@ -472,25 +488,34 @@ void write_points3d_txt(std::ostream& out) {
 
 }  // namespace
 
+std::string colmap_camera_text(const PinholeCamera& c) {
+  std::vector<double> params;
+  const colmap::CameraModelSpec& spec = colmap::model_for(c, &params);
+  std::ostringstream out;
+  out << std::setprecision(17) << spec.name << ' ' << c.width << ' ' << c.height;
+  for (double p : params) out << ' ' << p;
+  return out.str();
+}
+
 Scene read_colmap(const std::string& path, const std::string& image_dir) {
-  const fs::path model = model_folder(path);
-  const std::string cameras_file = (model / "cameras.txt").string();
-  const std::string images_file = (model / "images.txt").string();
-  const auto cameras = read_cameras_txt(cameras_file);
-  const auto images = read_images_txt(images_file);
+  const fs::path folder = model_folder(path);
+  colmap::Model model = read_model(folder);
+  sort_images(&model);
+  const bool binary = is_binary_model(folder);
 
   Scene scene;
   scene.format = "colmap";
+  scene.producer = binary ? "COLMAP (binary model)" : "COLMAP (text model)";
   scene.source = path;
   const std::string image_folder =
-      choose_image_folder(fs::absolute(model), image_dir, images.front().name, &scene);
-  for (const ColmapImage& image : images) {
-    auto cam = cameras.find(image.camera_id);
-    if (cam == cameras.end())
+      choose_image_folder(fs::absolute(folder), image_dir, model.images.front().name, &scene);
+  for (const colmap::Image& image : model.images) {
+    auto cam = model.cameras.find(image.camera_id);
+    if (cam == model.cameras.end())
       throw Error("image " + std::to_string(image.id) + " ('" + image.name +
                       "') refers to camera " + std::to_string(image.camera_id) + ", which " +
-                      cameras_file + " does not define",
-                  images_file, image.line);
+                      model.cameras_file + " does not define",
+                  model.images_file, image.line);
     View view;
     view.label = image.name;
     view.camera = cam->second.intrinsics;
@@ -499,7 +524,11 @@ Scene read_colmap(const std::string& path, const std::string& image_dir) {
     view.image_path = resolve(image.name, image_folder);
     scene.views.push_back(std::move(view));
   }
-  attach_mesh(fs::absolute(model), &scene);
+  if (model.has_points)
+    attach_sparse_points(model, &scene);
+  else
+    scene.warnings.push_back("no points3D file: the sparse points cannot check the cameras");
+  attach_mesh(fs::absolute(folder), &scene);
   return scene;
 }
 

@@ -1,5 +1,6 @@
 #include "meshnbv/io/file_util.h"
 
+#include <algorithm>
 #include <atomic>
 #include <cerrno>
 #include <cmath>
@@ -203,6 +204,55 @@ long long parse_int(const std::string& token, const std::string& file, long line
   if (end == begin || *end != '\0' || errno == ERANGE)
     throw Error("expected an integer for " + what + ", got '" + token + "'", file, line);
   return value;
+}
+
+}  // namespace meshnbv::io
+
+namespace meshnbv::io {
+namespace {
+
+bool has_image_extension(const std::string& path) {
+  static const char* kExtensions[] = {".jpg", ".jpeg", ".png", ".tif", ".tiff",
+                                      ".pgm", ".ppm",  ".bmp"};
+  const std::string ext = extension_lower(path);
+  for (const char* e : kExtensions)
+    if (ext == e) return true;
+  return false;
+}
+
+std::string first_match(const std::vector<std::pair<std::string, std::string>>& sorted,
+                        const std::string& key) {
+  const auto it = std::lower_bound(sorted.begin(), sorted.end(), std::make_pair(key, std::string()));
+  return it != sorted.end() && it->first == key ? it->second : std::string();
+}
+
+}  // namespace
+
+ImageIndex::ImageIndex(const std::string& folder) : folder_(folder) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (!fs::is_directory(folder, ec)) throw Error("image folder not found (or not a folder)", folder);
+  fs::recursive_directory_iterator it(folder, fs::directory_options::skip_permission_denied, ec);
+  std::size_t seen = 0;
+  for (; !ec && it != fs::recursive_directory_iterator(); it.increment(ec)) {
+    if (++seen > kMaxFiles) break;
+    if (!it->is_regular_file(ec)) continue;
+    const fs::path& p = it->path();
+    if (!has_image_extension(p.string())) continue;
+    by_name_.emplace_back(p.filename().string(), p.string());
+    by_stem_.emplace_back(p.stem().string(), p.string());
+  }
+  std::sort(by_name_.begin(), by_name_.end());
+  std::sort(by_stem_.begin(), by_stem_.end());
+}
+
+std::string ImageIndex::find(const std::string& name) const {
+  // Windows paths from another machine: the file name follows the last \ or /.
+  const std::size_t slash = name.find_last_of("/\\");
+  const std::string file = slash == std::string::npos ? name : name.substr(slash + 1);
+  std::string found = first_match(by_name_, file);
+  if (found.empty() && !has_image_extension(file)) found = first_match(by_stem_, file);
+  return found;
 }
 
 }  // namespace meshnbv::io

@@ -2,10 +2,12 @@
 // { "format": "meshnbv-scene", "version": 1, "mesh": "x.ply" | null,
 //   "views": [ { "label": "...", "image": "a.png" | null, "used": true,
 //                "camera": { "width", "height", "fx", "fy", "cx", "cy", "k1", "k2",
-//                            "R": [[3],[3],[3]], "t": [3] } } ] }
+//                            optional "lens": "brown" | "fisheye", "k3".."k6", "p1", "p2",
+//                            "skew", "R": [[3],[3],[3]], "t": [3] } } ] }
 // Paths are relative to the JSON file; camera in our convention.
 #include <cmath>
 #include <filesystem>
+#include <utility>
 
 #include <nlohmann/json.hpp>
 
@@ -57,6 +59,35 @@ bool optional_bool(const json& j, const char* key, bool fallback, const std::str
   return j.at(key).get<bool>();
 }
 
+// The lens: "lens" ("brown", the default, or "fisheye") and its optional
+// parameters (0 when absent).
+void read_lens(const json& j, PinholeCamera* c, const std::string& file, const std::string& where) {
+  const std::string lens = optional_string(j, "lens", "brown", file, where);
+  if (lens == "fisheye")
+    c->lens = LensModel::Fisheye;
+  else if (lens != "brown")
+    throw Error("\"lens\" must be \"brown\" or \"fisheye\", got \"" + lens + "\"", file, -1, where);
+  const std::pair<const char*, double PinholeCamera::*> params[] = {
+      {"k1", &PinholeCamera::k1}, {"k2", &PinholeCamera::k2}, {"k3", &PinholeCamera::k3},
+      {"k4", &PinholeCamera::k4}, {"k5", &PinholeCamera::k5}, {"k6", &PinholeCamera::k6},
+      {"p1", &PinholeCamera::p1}, {"p2", &PinholeCamera::p2}, {"skew", &PinholeCamera::skew}};
+  for (const auto& [key, member] : params)
+    if (j.contains(key)) c->*member = number(j, key, file, where);
+}
+
+// k1, k2 always; the rest of the lens only when set, so that pinhole and
+// radial scenes read the same as before the lens models.
+void write_lens(const PinholeCamera& c, json* cam) {
+  (*cam)["k1"] = c.k1;
+  (*cam)["k2"] = c.k2;
+  if (c.lens == LensModel::Fisheye) (*cam)["lens"] = "fisheye";
+  const std::pair<const char*, double> params[] = {{"k3", c.k3}, {"k4", c.k4}, {"k5", c.k5},
+                                                   {"k6", c.k6}, {"p1", c.p1}, {"p2", c.p2},
+                                                   {"skew", c.skew}};
+  for (const auto& [key, value] : params)
+    if (value != 0.0) (*cam)[key] = value;
+}
+
 PinholeCamera camera_from_json(const json& j, const std::string& file, const std::string& where) {
   if (!j.is_object()) throw Error("\"camera\" must be an object", file, -1, where);
   PinholeCamera c;
@@ -66,8 +97,7 @@ PinholeCamera camera_from_json(const json& j, const std::string& file, const std
   c.fy = number(j, "fy", file, where);
   c.cx = number(j, "cx", file, where);
   c.cy = number(j, "cy", file, where);
-  c.k1 = j.contains("k1") ? number(j, "k1", file, where) : 0.0;
-  c.k2 = j.contains("k2") ? number(j, "k2", file, where) : 0.0;
+  read_lens(j, &c, file, where);
   const json& R = j.value("R", json());
   const json& t = j.value("t", json());
   if (!R.is_array() || R.size() != 3) throw Error("\"R\" must be 3 rows of 3 numbers", file, -1, where);
@@ -143,8 +173,9 @@ void write_json_scene(const Scene& scene, const std::string& path, const std::st
   json views = json::array();
   for (const auto& v : scene.views) {
     const PinholeCamera& c = v.camera;
-    json cam = {{"width", c.width}, {"height", c.height}, {"fx", c.fx}, {"fy", c.fy},
-                {"cx", c.cx},       {"cy", c.cy},         {"k1", c.k1}, {"k2", c.k2}};
+    json cam = {{"width", c.width}, {"height", c.height}, {"fx", c.fx},
+                {"fy", c.fy},       {"cx", c.cx},         {"cy", c.cy}};
+    write_lens(c, &cam);
     cam["R"] = {{c.R(0, 0), c.R(0, 1), c.R(0, 2)},
                 {c.R(1, 0), c.R(1, 1), c.R(1, 2)},
                 {c.R(2, 0), c.R(2, 1), c.R(2, 2)}};

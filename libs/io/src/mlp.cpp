@@ -214,16 +214,22 @@ Scene read_mlp(const std::string& path) {
   return scene;
 }
 
+std::string mlp_unsupported_reason(const Scene& scene) {
+  for (const auto& v : scene.views)
+    if (v.camera.has_distortion())
+      return "view '" + v.label + "' has a lens (" + v.camera.lens_description() +
+             ") that a MeshLab project cannot represent; undistort first or write JSON";
+  return {};
+}
+
 void write_mlp(const Scene& scene, const std::string& path, const std::string& mesh_file,
                bool overwrite) {
   for (const auto& v : scene.views) {
     v.camera.check("view '" + v.label + "'");
     v.image_file("a MeshLab project (.mlp)");
-    if (v.camera.has_distortion())
-      throw Error("view '" + v.label + "' has radial distortion, which a MeshLab project cannot "
-                  "represent; undistort first or write COLMAP/JSON",
-                  path);
   }
+  const std::string unsupported = mlp_unsupported_reason(scene);
+  if (!unsupported.empty()) throw Error(unsupported, path);
   const std::string base = fs::path(path).parent_path().string();
   pugi::xml_document doc;
   doc.append_child(pugi::node_doctype).set_value("MeshLabDocument");

@@ -53,7 +53,8 @@ PinholeCamera camera_from_shot(const vcg::Shot<float>& shot, const std::string& 
 
 vcg::Shot<float> shot_from_camera(const PinholeCamera& camera) {
   if (camera.has_distortion())
-    throw Error("a MeshLab raster cannot hold radial distortion");
+    throw Error("a MeshLab raster cannot hold this lens (" + camera.lens_description() +
+                "); undistort the images first");
   vcg::Shot<float> shot;
   vcg::Camera<float>& in = shot.Intrinsics;
   in.cameraType = vcg::Camera<float>::PERSPECTIVE;

@@ -171,6 +171,19 @@ def scenes():
     write("colmap_zero_quaternion/cameras.txt", cameras)
     write("colmap_zero_quaternion/images.txt", "1 0 0 0 0 -0.5 -0.5 3 1 a.png\n\n")
 
+    # Binary models (COLMAP's little-endian layout, docs/formats.md).
+    def cameras_bin(model_id, params):
+        return (struct.pack("<Q", 1) + struct.pack("<IiQQ", 1, model_id, 8, 6) +
+                struct.pack("<%dd" % len(params), *params))
+    image_bin = (struct.pack("<Q", 1) + struct.pack("<I7dI", 1, 1, 0, 0, 0, -0.5, -0.5, 3, 1) +
+                 b"a.png\0" + struct.pack("<Q", 0))
+    write("colmap_bin_truncated/cameras.bin", cameras_bin(1, [8, 8, 4, 3]))
+    write("colmap_bin_truncated/images.bin", image_bin[:40])
+    write("colmap_bin_unknown_model/cameras.bin", cameras_bin(42, [8, 8, 4, 3]))
+    write("colmap_bin_unknown_model/images.bin", image_bin)
+    write("colmap_bin_huge_count/cameras.bin", cameras_bin(1, [8, 8, 4, 3]))
+    write("colmap_bin_huge_count/images.bin", struct.pack("<Q", 2**62) + image_bin[8:])
+
     cam = "8 0 0\n1 0 0\n0 1 0\n0 0 1\n-0.5 -0.5 -3\n"
     write("bundler_truncated/bundle.out", "# Bundle file v0.3\n2 0\n" + cam + "8 0 0\n1 0 0\n")
     write("bundler_truncated/list.txt", "a.png\nb.png\n")

@@ -3,6 +3,7 @@
 
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "meshnbv/camera.h"
@@ -42,6 +43,21 @@ struct View {
   const std::string& image_file(const std::string& purpose) const;
 };
 
+// A sparse 3-D point of the reconstruction (COLMAP points3D, OpenMVG
+// structure) and where the tool measured it: view index and pixel, in our
+// convention. Only for checking the import (reprojection_error).
+struct SparsePoint {
+  Vec3 position;
+  std::vector<std::pair<int, Vec2>> observations;  // (view index, pixel)
+};
+
+// How well the sparse points reproject through the cameras, in pixels.
+struct ReprojectionStats {
+  std::size_t observations = 0;  // measured (point in front of the camera)
+  std::size_t behind = 0;        // observations of a point behind its camera
+  double median = 0, mean = 0, max = 0;
+};
+
 struct Scene {
   TriangleMesh mesh;
   std::string mesh_path;  // where the mesh came from (may be empty)
@@ -49,6 +65,10 @@ struct Scene {
   std::string source;     // the path the scene was read from
   std::string format;     // "mlp", "json", "middlebury", "colmap", "bundler"
   std::vector<std::string> warnings;  // non-fatal remarks of the reader
+  // The tool that wrote the project as the reader recognised it, e.g.
+  // "COLMAP (binary model)", "Agisoft Metashape (cameras XML)"; may be empty.
+  std::string producer;
+  std::vector<SparsePoint> sparse_points;  // when the file holds them
   std::shared_ptr<ImageCache> images = std::make_shared<ImageCache>();
 
   // The image of view i: its in-memory pixels, else its file decoded via the
@@ -61,5 +81,21 @@ struct Scene {
   // sources, and the mesh (validate).
   void validate() const;
 };
+
+// Reprojection error of scene.sparse_points through the views' cameras.
+ReprojectionStats reprojection_error(const Scene& scene);
+
+// How much of the mesh lies in the views, ignoring occlusion: of up to
+// 20,000 faces (sampled evenly), those whose centroid projects inside at
+// least one camera's image, in front of it.
+struct MeshViewCoverage {
+  std::size_t faces_checked = 0, faces_in_view = 0;
+  double share() const { return faces_checked ? double(faces_in_view) / double(faces_checked) : 1.0; }
+};
+MeshViewCoverage mesh_view_coverage(const Scene& scene);
+// A plain one-line warning when fewer than half of the faces lie in any
+// view (the mesh is probably in another coordinate frame than the
+// cameras); "" otherwise, or when there is no mesh or no view.
+std::string mesh_frame_warning(const Scene& scene);
 
 }  // namespace meshnbv

@@ -80,7 +80,7 @@ class ColmapWorkspace {
 };
 
 // Writes COLMAP's text model of `views` with their known poses: cameras.txt
-// (PINHOLE, or OPENCV when distorted; principal point + 0.5 for COLMAP's
+// (io::colmap_camera_text: PINHOLE, or the model holding the lens; principal point + 0.5 for COLMAP's
 // pixel convention), images.txt (no 2-D points), empty points3D.txt.
 // `image_ids`/`camera_ids`/`names` per view.
 void write_known_pose_model(const std::vector<View>& views, const std::vector<long long>& image_ids,

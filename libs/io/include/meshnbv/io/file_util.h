@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace meshnbv::io {
@@ -57,5 +58,35 @@ double parse_double(const std::string& token, const std::string& file, long line
                     const std::string& what);
 long long parse_int(const std::string& token, const std::string& file, long line,
                     const std::string& what);
+
+}  // namespace meshnbv::io
+
+namespace meshnbv::io {
+
+// Image files under a folder, searched recursively by name: for projects
+// whose image paths were written on another machine (a project moved
+// between machines, or a format that stores only labels). Extensions
+// searched: .jpg .jpeg .png .tif .tiff .pgm .ppm .bmp (any case).
+class ImageIndex {
+ public:
+  ImageIndex() = default;
+  // Walks `folder` once (at most kMaxFiles files; symlinked folders are not
+  // followed). Throws Error when `folder` is not a folder.
+  explicit ImageIndex(const std::string& folder);
+  static constexpr std::size_t kMaxFiles = 1000000;
+
+  // The file whose name equals the file name of `name` (the folders of
+  // `name` are ignored), else, when `name` has no image extension, the file
+  // whose stem is `name` (Metashape labels). The first in path order when
+  // several match; "" when none does.
+  std::string find(const std::string& name) const;
+  bool empty() const { return by_name_.empty(); }
+  const std::string& folder() const { return folder_; }
+
+ private:
+  std::string folder_;
+  std::vector<std::pair<std::string, std::string>> by_name_;  // (file name, path), sorted
+  std::vector<std::pair<std::string, std::string>> by_stem_;  // (stem, path), sorted
+};
 
 }  // namespace meshnbv::io
