@@ -104,7 +104,7 @@ Rescore energy_rescore(const Scene& scene, const RayCaster& caster, const Sugges
 void check_outputs(const MissionArgs& a) {
   io::check_can_write_folder(a.out);
   for (const char* f : {"mission.kml", "mission.kmz", "litchi.csv", "mission.geojson", "waypoints.csv",
-                        "mission.json"})
+                        "mission.json", "mission.svg"})
     io::check_can_write((fs::path(a.out) / f).string(), a.overwrite);
   if (!a.overwrite && fs::is_directory(a.out))
     for (const auto& e : fs::directory_iterator(a.out))
@@ -128,7 +128,7 @@ void run_mission(MissionArgs& a) {
   auto evaluators = std::make_shared<std::vector<std::unique_ptr<EnergyEvaluator>>>();
   const Rescore rescore = energy_rescore(scene, caster, sug, evaluators.get());
   const MissionPlan plan = plan_mission(sug.suggestions, air, rescore);
-  const auto files = mission_files(plan, frame, a.options, keep_outs);  // all in memory first
+  const auto files = mission_files(plan, frame, a.options, keep_outs, &scene.mesh);  // all in memory first
   fs::create_directories(a.out);
   for (const auto& [name, content] : files)
     io::write_atomically((fs::path(a.out) / name).string(), [&](std::ostream& o) { o << content; },

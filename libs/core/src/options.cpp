@@ -466,10 +466,10 @@ const OptionTable<MissionOptions>& mission_option_table() {
            "from the mesh",
            left_open(0, 1000, "metres"), &O::min_mesh_distance),
       real("gimbal_pitch_min", "Gimbal pitch min",
-           "Degrees (-90 = straight down); a view looking steeper down is tilted up to it",
+           "Degrees (-90 = straight down); no photo looks further down (its pose is moved or dropped)",
            closed(-90, 90, "degrees"), &O::gimbal_pitch_min),
       real("gimbal_pitch_max", "Gimbal pitch max",
-           "Degrees (0 = horizontal); a view looking higher is tilted down to it",
+           "Degrees (0 = horizontal); no photo looks further up (its pose is moved or dropped)",
            closed(-90, 90, "degrees"), &O::gimbal_pitch_max),
       real("target_gsd", "Target GSD",
            "Centimetres per pixel at the look-at point: caps the camera's distance to focal "

@@ -114,9 +114,11 @@ bool ring_self_intersects(const std::vector<Vec2>& r) {
       const bool adjacent = j == i + 1 || (i == 0 && j == n - 1);
       if (adjacent) {
         // Adjacent edges share one corner; they must not fold back onto each other.
-        const Vec2& shared = j == i + 1 ? r[j] : r[i];
-        const Vec2& p = j == i + 1 ? r[i] : r[(i + 1) % n];
-        const Vec2& q = j == i + 1 ? r[(j + 1) % n] : r[n - 2 + (n == 2)];
+        // (i, i+1) meet at r[i+1]; (0, n-1) meet at r[0].
+        const bool next = j == i + 1;
+        const Vec2& shared = next ? r[j] : r[0];
+        const Vec2& p = next ? r[i] : r[1];
+        const Vec2& q = next ? r[(j + 1) % n] : r[n - 1];
         if (cross(shared, p, q) == 0 && (p - shared).dot(q - shared) > 0) return true;
         continue;
       }

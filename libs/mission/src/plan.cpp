@@ -164,6 +164,40 @@ struct Leg {
   std::string problem;    // non-empty: no way found
 };
 
+// Over the obstacle: climb at a, cross, descend at b (the lowest that works).
+std::optional<Leg> climb_detour(const Airspace& air, const Vec3& a, const Vec3& b) {
+  const Vec3& up = air.frame().up();
+  const double step = std::max(2.0, 2.0 * air.options().min_mesh_distance) / air.frame().metres_per_unit();
+  for (int k = 1; k <= 200; ++k) {
+    const Vec3 a2 = a + up * (step * k), b2 = b + up * (step * k);
+    if (air.height(a2) > air.options().max_altitude || air.height(b2) > air.options().max_altitude)
+      break;
+    if (air.point_problem(a2).empty() && air.point_problem(b2).empty() &&
+        air.leg_problem(a, a2).empty() && air.leg_problem(a2, b2).empty() &&
+        air.leg_problem(b2, b).empty())
+      return Leg{{a2, b2}, (a2 - a).norm() + (b2 - a2).norm() + (b - b2).norm(), {}};
+  }
+  return std::nullopt;
+}
+
+// Around the obstacle: one corner beside the leg's midpoint, at the leg's
+// height, on the side that needs the smaller offset.
+std::optional<Leg> side_detour(const Airspace& air, const Vec3& a, const Vec3& b) {
+  const Vec3& up = air.frame().up();
+  Vec3 side = up.cross(b - a);
+  if (side.norm() < 1e-12 * (b - a).norm() || (b - a).norm() == 0) return std::nullopt;
+  side.normalize();
+  const double step = std::max(2.0, 2.0 * air.options().min_mesh_distance) / air.frame().metres_per_unit();
+  const Vec3 mid = 0.5 * (a + b);
+  for (int k = 1; k <= 100; ++k)
+    for (double sign : {1.0, -1.0}) {
+      const Vec3 m = mid + sign * side * (step * k);
+      if (air.point_problem(m).empty() && air.leg_problem(a, m).empty() && air.leg_problem(m, b).empty())
+        return Leg{{m}, (m - a).norm() + (b - m).norm(), {}};
+    }
+  return std::nullopt;
+}
+
 Leg plan_leg(const Airspace& air, const Vec3& a, const Vec3& b) {
   Leg leg;
   leg.problem = air.leg_problem(a, b);
@@ -171,22 +205,9 @@ Leg plan_leg(const Airspace& air, const Vec3& a, const Vec3& b) {
     leg.length = (b - a).norm();
     return leg;
   }
-  const Vec3& up = air.frame().up();
-  const double mpu = air.frame().metres_per_unit();
-  const double step = std::max(2.0, 2.0 * air.options().min_mesh_distance) / mpu;
-  for (int k = 1; k <= 200; ++k) {
-    const Vec3 a2 = a + up * (step * k), b2 = b + up * (step * k);
-    if (air.height(a2) > air.options().max_altitude || air.height(b2) > air.options().max_altitude)
-      break;
-    if (air.point_problem(a2).empty() && air.point_problem(b2).empty() &&
-        air.leg_problem(a, a2).empty() && air.leg_problem(a2, b2).empty() &&
-        air.leg_problem(b2, b).empty()) {
-      leg.via = {a2, b2};
-      leg.length = (a2 - a).norm() + (b2 - a2).norm() + (b - b2).norm();
-      leg.problem.clear();
-      return leg;
-    }
-  }
+  const std::optional<Leg> over = climb_detour(air, a, b), around = side_detour(air, a, b);
+  if (over && (!around || over->length <= around->length)) return *over;
+  if (around) return *around;
   return leg;
 }
 
@@ -244,7 +265,8 @@ class FlightBuilder {
   void detour_note(int w, const Leg& leg) {
     if (leg.via.empty()) return;
     ++cur_.detours;
-    notes_->push_back({wps_[std::size_t(w)].label, "detour", "leg climbs over an obstacle"});
+    notes_->push_back({wps_[std::size_t(w)].label, "detour",
+                       leg.via.size() == 2 ? "leg climbs over an obstacle" : "leg goes around an obstacle"});
   }
   void append(const Leg& to, int w) {
     if (cur_.points.empty()) cur_.points.push_back({top_, -1});

@@ -119,7 +119,8 @@ std::string mission_summary_json(const MissionPlan& plan, const GeoFrame& frame,
 std::vector<std::pair<std::string, std::string>> mission_files(const MissionPlan& plan,
                                                                const GeoFrame& frame,
                                                                const MissionOptions& o,
-                                                               const KeepOuts& keep_outs) {
+                                                               const KeepOuts& keep_outs,
+                                                               const TriangleMesh* mesh) {
   std::vector<std::pair<std::string, std::string>> files;
   files.emplace_back("mission.kml", mission_kml(plan, frame));
   files.emplace_back("mission.kmz", mission_kmz(plan, frame, o));
@@ -132,6 +133,7 @@ std::vector<std::pair<std::string, std::string>> mission_files(const MissionPlan
   files.emplace_back("mission.geojson", mission_geojson(plan, frame, keep_outs));
   files.emplace_back("waypoints.csv", waypoints_csv(plan));
   files.emplace_back("mission.json", mission_summary_json(plan, frame, o));
+  if (mesh) files.emplace_back("mission.svg", mission_svg(plan, frame, *mesh, keep_outs));
   return files;
 }
 

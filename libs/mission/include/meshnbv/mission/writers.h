@@ -6,6 +6,8 @@
 //   mission.geojson  photos, paths, take-off point, keep-out polygons
 //   waypoints.csv    scene and WGS84 coordinates of every photo
 //   mission.json     summary: flights, moved and dropped suggestions and why
+//   mission.svg      the flights from above over the mesh (up-facing faces),
+//                    keep-out volumes, take-off point, minutes per flight
 // Every flight's points run from the climb's top above the take-off point
 // back to it, photo waypoints and path points (detour corners) alike, so
 // that an app flying straight between them flies the checked path.
@@ -34,10 +36,14 @@ std::string waypoints_csv(const MissionPlan& plan);
 std::string mission_summary_json(const MissionPlan& plan, const GeoFrame& frame,
                                  const MissionOptions& options);
 
-// Every file above as (name, content).
+std::string mission_svg(const MissionPlan& plan, const GeoFrame& frame, const TriangleMesh& mesh,
+                        const KeepOuts& keep_outs);
+
+// Every file above as (name, content); the SVG only with a mesh.
 std::vector<std::pair<std::string, std::string>> mission_files(const MissionPlan& plan,
                                                                const GeoFrame& frame,
                                                                const MissionOptions& options,
-                                                               const KeepOuts& keep_outs);
+                                                               const KeepOuts& keep_outs,
+                                                               const TriangleMesh* mesh = nullptr);
 
 }  // namespace meshnbv::mission
