@@ -474,7 +474,7 @@ const OptionTable<MissionOptions>& mission_option_table() {
       real("target_gsd", "Target GSD",
            "Centimetres per pixel at the look-at point: caps the camera's distance to focal "
            "length (pixels) x GSD; 0 = no cap",
-           with_special(left_open(0, 1000, "cm/pixel"), 0, "no cap"), &O::target_gsd),
+           with_special(closed(0.01, 1000, "cm/pixel"), 0, "no cap"), &O::target_gsd),
       int_option<O>(
           "max_waypoints", "Max waypoints",
           "Photos per flight at most (a flight with more is split)", closed(1, 10000),
