@@ -4,6 +4,7 @@
 #include <memory>
 
 #include "commands.h"
+#include "meshnbv/mission_options.h"
 #include "meshnbv/options.h"
 
 namespace meshnbv::cli {
@@ -48,6 +49,7 @@ void add_options_command(CLI::App& app) {
     print_markdown(std::cout, "Next-view suggestion (`meshnbv suggest`, `run`, `loop`; "
                               "vtkMeshNBVNextBestViewFilter; MeshLab Suggest Next View)",
                    suggest_option_table());
+    print_markdown(std::cout, "Drone missions (`meshnbv mission`)", mission_option_table());
   });
 }
 

@@ -35,6 +35,7 @@ void add_pri_command(CLI::App& app);
 void add_suggest_command(CLI::App& app);
 void add_run_command(CLI::App& app);
 void add_loop_command(CLI::App& app);
+void add_mission_command(CLI::App& app);
 void add_options_command(CLI::App& app);
 // The PRI and next-view options as flags, derived from the core's option
 // tables (options.h) through `flags`; after parsing, finish_options()

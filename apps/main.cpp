@@ -49,6 +49,7 @@ int main(int argc, char** argv) {
     meshnbv::cli::add_suggest_command(app);
     meshnbv::cli::add_run_command(app);
     meshnbv::cli::add_loop_command(app);
+    meshnbv::cli::add_mission_command(app);
     meshnbv::cli::add_options_command(app);
     app.parse(argc, argv);
   } catch (const CLI::Success& e) {

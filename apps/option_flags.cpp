@@ -5,6 +5,7 @@
 #include <cstdlib>
 
 #include "meshnbv/error.h"
+#include "meshnbv/mission_options.h"
 #include "meshnbv/planner.h"
 #include "meshnbv/pri.h"
 
@@ -108,6 +109,8 @@ void OptionFlags::apply() const {
 }
 
 template void OptionFlags::add(CLI::App*, const OptionTable<PriOptions>&, PriOptions*,
+                               const std::vector<std::string>&);
+template void OptionFlags::add(CLI::App*, const OptionTable<MissionOptions>&, MissionOptions*,
                                const std::vector<std::string>&);
 template void OptionFlags::add(CLI::App*, const OptionTable<SuggestOptions>&, SuggestOptions*,
                                const std::vector<std::string>&);

@@ -10,6 +10,12 @@ PACKAGES=(
   # core
   libeigen3-dev libembree-dev libopencv-dev libopenmesh-dev libcgal-dev libtbb-dev
   nlohmann-json3-dev libpugixml-dev libcli11-dev libtinyobjloader-dev
+  # drone missions (libs/mission, docs/missions.md): coordinate systems (with
+  # the EGM96 grid of proj-data), EXIF, KMZ (Debian's libzip CMake config
+  # names the zipcmp/zipmerge/ziptool programs)
+  libproj-dev proj-data libexiv2-dev libzip-dev zipcmp zipmerge ziptool
+  # tests/cli/mission.sh writes EXIF GPS tags with Pillow (an independent writer)
+  python3-pil
   # tests and benchmarks
   libgtest-dev libgmock-dev libbenchmark-dev python3
   # evaluation loop (libs/eval/src, bench/eval): Boost.Graph max-flow for the

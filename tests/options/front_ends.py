@@ -123,12 +123,14 @@ def check_cli(cli, tables, work):
         "suggest": [("pri", []), ("suggest", [])],
         "run": [("pri", []), ("suggest", [])],
         "loop": [("pri", []), ("suggest", ["candidates"])],
+        "mission": [("mission", [])],
     }
     base = {
         "pri": ["--out", os.path.join(work, "p.ply")],
         "suggest": ["--out", os.path.join(work, "s.json")],
         "run": ["--out", os.path.join(work, "run")],
         "loop": ["--out", os.path.join(work, "loop")],
+        "mission": ["--out", os.path.join(work, "mission"), "--suggestions", os.path.join(work, "s.json")],
     }
     checked = 0
     for command, uses in commands.items():

@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "meshnbv/error.h"
+#include "meshnbv/mission_options.h"
 #include "meshnbv/planner.h"
 #include "meshnbv/pri.h"
 
@@ -463,9 +464,77 @@ void parse_options_json(const std::string& text, const OptionTable<Options>& tab
   *options = out;
 }
 
+const OptionTable<MissionOptions>& mission_option_table() {
+  using O = MissionOptions;
+  auto real = [](const char* name, const char* label, const char* help, OptionRange range,
+                 double O::*field) {
+    return real_option<O>(name, label, help, std::move(range),
+                          [field](const O& o) { return o.*field; },
+                          [field](O& o, double x) { o.*field = x; });
+  };
+  const double inf = std::numeric_limits<double>::infinity();
+  static const OptionTable<O> table = {
+      real("min_altitude", "Min altitude",
+           "Metres above the take-off point; no waypoint or leg goes lower (take-off and landing "
+           "are vertical)",
+           closed(0, 10000, "metres"), &O::min_altitude),
+      real("max_altitude", "Max altitude",
+           "Metres above the take-off point; no waypoint, leg or detour goes higher",
+           left_open(0, 10000, "metres"), &O::max_altitude),
+      real("min_mesh_distance", "Min distance to the mesh",
+           "Metres; every waypoint and every point of every leg keeps at least this distance "
+           "from the mesh",
+           left_open(0, 1000, "metres"), &O::min_mesh_distance),
+      real("gimbal_pitch_min", "Gimbal pitch min",
+           "Degrees (-90 = straight down); no photo looks further down (its pose is moved or dropped)",
+           closed(-90, 90, "degrees"), &O::gimbal_pitch_min),
+      real("gimbal_pitch_max", "Gimbal pitch max",
+           "Degrees (0 = horizontal); no photo looks further up (its pose is moved or dropped)",
+           closed(-90, 90, "degrees"), &O::gimbal_pitch_max),
+      real("target_gsd", "Target GSD",
+           "Centimetres per pixel at the look-at point: caps the camera's distance to focal "
+           "length (pixels) x GSD; 0 = no cap",
+           with_special(closed(0.01, 1000, "cm/pixel"), 0, "no cap"), &O::target_gsd),
+      int_option<O>(
+          "max_waypoints", "Max waypoints",
+          "Photos per flight at most (a flight with more is split)", closed(1, 10000),
+          [](const O& o) { return o.max_waypoints; },
+          [](O& o, std::int64_t x) { o.max_waypoints = clamp_to_int(x); }),
+      real("speed", "Speed", "Flight speed in m/s (legs, climbs and descents)",
+           left_open(0, 50, "m/s"), &O::speed),
+      real("time_per_photo", "Time per photo",
+           "Seconds spent at each waypoint (stop, turn, gimbal, shot)", closed(0, 600, "seconds"),
+           &O::time_per_photo),
+      real("battery_minutes", "Battery minutes",
+           "Usable minutes per battery: the route is split into flights from and back to the "
+           "take-off point that each fit",
+           left_open(0, inf, "minutes"), &O::battery_minutes),
+      choice_option<O>(
+          "infeasible", "Infeasible suggestions",
+          "A suggestion that breaks a constraint: move = to the nearest pose that keeps them "
+          "all (then re-scored), dropped when there is none; drop = dropped. The output says "
+          "which and why",
+          {"move", "drop"}, [](const O& o) { return o.infeasible; },
+          [](O& o, const std::string& w) { o.infeasible = w; }),
+  };
+  return table;
+}
+
+void MissionOptions::check() const {
+  check_options(*this, mission_option_table());
+  if (!(min_altitude < max_altitude))
+    throw Error("min_altitude must be below max_altitude, got " + format_option_value(min_altitude) +
+                " and " + format_option_value(max_altitude));
+  if (!(gimbal_pitch_min < gimbal_pitch_max))
+    throw Error("gimbal_pitch_min must be below gimbal_pitch_max, got " +
+                format_option_value(gimbal_pitch_min) + " and " +
+                format_option_value(gimbal_pitch_max));
+}
+
 std::string option_tables_json() {
   nlohmann::json j = {{"pri", table_json(pri_option_table())},
-                      {"suggest", table_json(suggest_option_table())}};
+                      {"suggest", table_json(suggest_option_table())},
+                      {"mission", table_json(mission_option_table())}};
   return j.dump(2) + "\n";
 }
 
@@ -479,5 +548,10 @@ template std::string options_json(const SuggestOptions&, const OptionTable<Sugge
 template void parse_options_json(const std::string&, const OptionTable<PriOptions>&, PriOptions*);
 template void parse_options_json(const std::string&, const OptionTable<SuggestOptions>&,
                                  SuggestOptions*);
+template struct OptionSpec<MissionOptions>;
+template void check_options(const MissionOptions&, const OptionTable<MissionOptions>&);
+template std::string options_json(const MissionOptions&, const OptionTable<MissionOptions>&);
+template void parse_options_json(const std::string&, const OptionTable<MissionOptions>&,
+                                 MissionOptions*);
 
 }  // namespace meshnbv

@@ -69,8 +69,10 @@ using OptionTable = std::vector<OptionSpec<Options>>;
 
 struct PriOptions;
 struct SuggestOptions;
+struct MissionOptions;
 const OptionTable<PriOptions>& pri_option_table();
 const OptionTable<SuggestOptions>& suggest_option_table();
+const OptionTable<MissionOptions>& mission_option_table();  // meshnbv mission
 
 // Throws Error for the first option of `options` out of its range.
 template <class Options>

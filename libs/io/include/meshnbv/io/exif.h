@@ -1,0 +1,27 @@
+// EXIF of a photo through exiv2 (Debian libexiv2-dev): GPS position and
+// focal length, what georeferencing a scene from its photos needs
+// (meshnbv::mission, docs/missions.md). Tags that are absent stay empty;
+// tags that are present but malformed (zero denominators, latitude beyond
+// 90 degrees, a reference other than N/S/E/W) are an Error naming the file.
+#pragma once
+
+#include <optional>
+#include <string>
+
+namespace meshnbv::io {
+
+struct ExifInfo {
+  // WGS84 degrees (south and west negative); metres above sea level
+  // (GPSAltitudeRef 1 = below: negative).
+  std::optional<double> latitude, longitude, altitude;
+  std::optional<double> focal_length_mm;    // Exif.Photo.FocalLength
+  std::optional<double> focal_length_35mm;  // Exif.Photo.FocalLengthIn35mmFilm
+  bool has_gps() const { return latitude && longitude; }
+};
+
+// Throws Error when the file is missing or not an image exiv2 reads.
+ExifInfo read_exif(const std::string& path);
+// The same from the bytes of a file (`name` for messages); for the fuzzer.
+ExifInfo read_exif_from_memory(const std::string& bytes, const std::string& name);
+
+}  // namespace meshnbv::io

@@ -1,0 +1,97 @@
+// EXIF GPS and focal length through exiv2 (exif.h).
+#include "meshnbv/io/exif.h"
+
+#include <cmath>
+#include <mutex>
+
+#include <exiv2/exiv2.hpp>
+
+#include "meshnbv/error.h"
+#include "meshnbv/io/file_util.h"
+
+namespace meshnbv::io {
+namespace {
+
+void mute_exiv2_log() {
+  static std::once_flag once;
+  std::call_once(once, [] { Exiv2::LogMsg::setLevel(Exiv2::LogMsg::mute); });
+}
+
+const Exiv2::Exifdatum* find(const Exiv2::ExifData& exif, const char* key) {
+  const auto it = exif.findKey(Exiv2::ExifKey(key));
+  return it == exif.end() ? nullptr : &*it;
+}
+
+double rational(const Exiv2::Exifdatum& d, long i, const std::string& file) {
+  const Exiv2::Rational r = d.toRational(i);
+  if (r.second == 0)
+    throw Error("malformed EXIF: " + d.key() + " has a zero denominator", file);
+  return double(r.first) / double(r.second);
+}
+
+// Degrees, minutes, seconds (three rationals) with a hemisphere reference.
+std::optional<double> coordinate(const Exiv2::ExifData& exif, const char* key, const char* ref_key,
+                                 char positive, char negative, double limit,
+                                 const std::string& file) {
+  const Exiv2::Exifdatum* d = find(exif, key);
+  if (!d) return std::nullopt;
+  if (d->count() != 3 || d->typeId() != Exiv2::unsignedRational)
+    throw Error("malformed EXIF: " + d->key() + " must be three unsigned rationals", file);
+  const double value = rational(*d, 0, file) + rational(*d, 1, file) / 60.0 +
+                       rational(*d, 2, file) / 3600.0;
+  if (!std::isfinite(value) || value > limit)
+    throw Error("malformed EXIF: " + d->key() + " is " + format_option_value(value) +
+                    " degrees, beyond " + format_option_value(limit), file);
+  const Exiv2::Exifdatum* r = find(exif, ref_key);
+  const std::string ref = r ? r->toString() : std::string();
+  if (ref.empty() || (ref[0] != positive && ref[0] != negative))
+    throw Error(std::string("malformed EXIF: ") + ref_key + " must be " + positive + " or " +
+                    negative + ", got '" + ref + "'", file);
+  return ref[0] == negative ? -value : value;
+}
+
+ExifInfo from_image(Exiv2::Image& image, const std::string& file) {
+  image.readMetadata();
+  const Exiv2::ExifData& exif = image.exifData();
+  ExifInfo info;
+  info.latitude = coordinate(exif, "Exif.GPSInfo.GPSLatitude", "Exif.GPSInfo.GPSLatitudeRef", 'N',
+                             'S', 90.0, file);
+  info.longitude = coordinate(exif, "Exif.GPSInfo.GPSLongitude", "Exif.GPSInfo.GPSLongitudeRef",
+                              'E', 'W', 180.0, file);
+  if (const Exiv2::Exifdatum* a = find(exif, "Exif.GPSInfo.GPSAltitude")) {
+    double alt = rational(*a, 0, file);
+    if (const Exiv2::Exifdatum* r = find(exif, "Exif.GPSInfo.GPSAltitudeRef"))
+      if (r->count() > 0 && r->toLong(0) == 1) alt = -alt;
+    info.altitude = alt;
+  }
+  if (const Exiv2::Exifdatum* f = find(exif, "Exif.Photo.FocalLength")) {
+    const double mm = rational(*f, 0, file);
+    if (!(mm > 0) || !std::isfinite(mm))
+      throw Error("malformed EXIF: Exif.Photo.FocalLength must be positive", file);
+    info.focal_length_mm = mm;
+  }
+  if (const Exiv2::Exifdatum* f = find(exif, "Exif.Photo.FocalLengthIn35mmFilm"))
+    if (f->count() > 0 && f->toLong(0) > 0) info.focal_length_35mm = double(f->toLong(0));
+  return info;
+}
+
+}  // namespace
+
+ExifInfo read_exif(const std::string& path) {
+  const std::string bytes = read_file(path);  // a one-line Error when missing
+  return read_exif_from_memory(bytes, path);
+}
+
+ExifInfo read_exif_from_memory(const std::string& bytes, const std::string& name) {
+  mute_exiv2_log();
+  try {
+    auto image = Exiv2::ImageFactory::open(reinterpret_cast<const Exiv2::byte*>(bytes.data()),
+                                           long(bytes.size()));
+    if (!image.get()) throw Error("not an image with EXIF that exiv2 reads", name);
+    return from_image(*image, name);
+  } catch (const Exiv2::AnyError& e) {
+    throw Error(std::string("cannot read EXIF: ") + e.what(), name);
+  }
+}
+
+}  // namespace meshnbv::io
