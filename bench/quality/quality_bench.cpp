@@ -31,10 +31,7 @@
 #include "meshnbv/eval/quality.h"
 #include "meshnbv/options.h"
 #include "meshnbv/pri.h"
-#include "meshnbv/raycaster.h"
-#include "meshnbv/renderer.h"
 #include "meshnbv/synth/project.h"
-#include "meshnbv/texture.h"
 #include "quality_cases.h"
 
 using namespace meshnbv;
@@ -43,64 +40,14 @@ namespace fs = std::filesystem;
 
 namespace {
 
-constexpr double kBandLimitPixels = 8.0;  // as libs/synth/src/project.cpp
-
 double now_s() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
 
-double median(std::vector<double> v) {
-  std::nth_element(v.begin(), v.begin() + std::ptrdiff_t(v.size() / 2), v.end());
-  return v[v.size() / 2];
-}
-
-// Metres per pixel at the median distance from the cameras to the box centre.
-double footprint_of(const Scene& scene, const TriangleMesh& truth) {
-  std::vector<double> fp;
-  const Vec3 centre = truth.bounding_box().center();
-  for (const auto& v : scene.views) fp.push_back((v.camera.center() - centre).norm() / v.camera.fx);
-  return median(fp);
-}
-
-struct Prepared {
-  Scene scene;
-  TriangleMesh truth;
-  std::vector<float> error;
-  double footprint = 0;
+// A case ready to score, with what the bench reports of its preparation.
+struct Prepared : test::PreparedCase {
   json info;
 };
-
-void render_in_memory(const synth::SynthOptions& o, Prepared& p) {
-  const RayCaster caster(p.truth);
-  const SolidTexture texture(o.seed, default_materials(), kBandLimitPixels * p.footprint);
-  RenderInputs in{&p.truth, &caster, &texture, p.truth.face_attribute(synth::kMaterialAttribute)};
-  for (auto& v : p.scene.views) {
-    v.image_path.clear();
-    v.pixels = std::make_shared<const Image>(render(in, v.camera, o.render));
-  }
-}
-
-Prepared prepare_synthetic(const test::QualityCase& c) {
-  synth::SynthOptions o = test::quality_case_options(c);
-  Prepared p;
-  if (c.kind == "field") {
-    // The cameras do not depend on the degradation: the footprint first.
-    synth::SynthOptions probe = o;
-    probe.degradations = {synth::parse_degradation("noise:0:0.1")};
-    const synth::SynthProject q = synth::make_synthetic_project(probe);
-    const double fp = footprint_of(q.scene, q.truth);
-    synth::Degradation d = synth::parse_degradation("field");
-    d.strength = c.peak_px * fp / q.truth.bounding_box().diagonal();
-    o.degradations = {d};
-  }
-  synth::SynthProject sp = synth::make_synthetic_project(o);
-  p.truth = sp.truth;
-  p.scene = sp.scene;
-  p.error = sp.gt_error;
-  p.footprint = footprint_of(p.scene, p.truth);
-  render_in_memory(o, p);
-  return p;
-}
 
 Prepared prepare_recon(const test::QualityCase& c, const std::string& cache) {
   synth::SynthOptions o = test::quality_case_options(c);
@@ -120,18 +67,9 @@ Prepared prepare_recon(const test::QualityCase& c, const std::string& cache) {
   p.scene.mesh = r.mesh;
   p.scene.views = d.views;
   p.error = synth::face_distance_to_surface(r.mesh, d.truth);
-  p.footprint = footprint_of(p.scene, p.truth);
+  p.footprint = test::footprint_of(p.scene, p.truth);
   p.info["sparse_points"] = r.sparse.points.size();
   return p;
-}
-
-PriOptions paper(Measure m) {
-  PriOptions o;
-  o.measure = m;
-  o.edge_margin = 0;
-  o.max_incidence_angle = 90;
-  o.check_interior_occlusion = false;
-  return o;
 }
 
 json metrics_json(const eval::QualityMetrics& m) {
@@ -143,53 +81,24 @@ json run_case(const test::QualityCase& c, Prepared& p) {
   json row = {{"name", c.name}, {"kind", c.kind}, {"scene", c.scene}, {"faces", p.scene.mesh.num_faces()},
               {"footprint_m_per_px", p.footprint}};
   if (!p.info.is_null()) row.update(p.info);
-  const std::map<std::string, PriOptions> measures = {
-      {"paper_ssd", paper(Measure::SSD)}, {"paper_ncc", paper(Measure::NCC)},
-      {"default_ssd", PriOptions{}},      {"default_ncc", [] { PriOptions o; o.measure = Measure::NCC; return o; }()},
-      {"offset", [] {
-         PriOptions o;
-         o.measure = Measure::Offset;
-         // Experiments: MESHNBV_OFFSET_OPTIONS='{"support_radius": 4}' (JSON of the option table).
-         if (const char* j = std::getenv("MESHNBV_OFFSET_OPTIONS")) parse_options_json(j, pri_option_table(), &o);
-         return o;
-       }()}};
-  std::map<std::string, PriResult> results;
+  PriOptions offset;
+  offset.measure = Measure::Offset;
+  // Experiments: MESHNBV_OFFSET_OPTIONS='{"support_radius": 4}' (JSON of the option table).
+  if (const char* j = std::getenv("MESHNBV_OFFSET_OPTIONS")) parse_options_json(j, pri_option_table(), &offset);
+  const test::CaseScores scores = test::score_case(p, offset);
+  const std::vector<std::size_t>& faces = scores.faces;
+  const std::map<std::string, PriResult>& results = scores.results;
   json seconds;
-  for (const auto& [name, o] : measures) {
-    results[name] = compute_pri(p.scene, o);
-    seconds[name] = results[name].seconds;
-  }
-  PriOptions smith;
-  smith.max_incidence_angle = 85;
-  const eval::GeometricPredictors g =
-      eval::geometric_predictors(p.scene.mesh, select_pri_views(p.scene, smith));
-  std::vector<std::size_t> faces;
-  for (std::size_t f = 0; f < p.scene.mesh.num_faces(); ++f) {
-    bool all = g.views[f] >= 2;
-    for (const auto& [name, r] : results) all = all && r.status[f] == FaceStatus::Observed;
-    if (all) faces.push_back(f);
-  }
-  std::vector<double> error;
+  for (const auto& [name, r] : results) seconds[name] = r.seconds;
   std::vector<double> err_px;
-  for (std::size_t f : faces) {
-    error.push_back(p.error[f]);
-    err_px.push_back(p.error[f] / p.footprint);
-  }
+  for (std::size_t f : faces) err_px.push_back(p.error[f] / p.footprint);
   row["observed_faces"] = faces.size();
   std::sort(err_px.begin(), err_px.end());
   if (!err_px.empty())
     row["error_px"] = {{"p50", err_px[err_px.size() / 2]}, {"p90", err_px[err_px.size() * 9 / 10]},
                        {"max", err_px.back()}};
   json pred;
-  auto add = [&](const std::string& name, auto value_of) {
-    std::vector<double> s;
-    for (std::size_t f : faces) s.push_back(value_of(f));
-    pred[name] = metrics_json(eval::quality_metrics(s, error));
-  };
-  for (const auto& [name, r] : results) add(name, [&](std::size_t f) { return double(r.pri[f]); });
-  add("views", [&](std::size_t f) { return -double(g.views[f]); });
-  add("max_angle", [&](std::size_t f) { return -g.max_angle[f]; });
-  add("reconstructability", [&](std::size_t f) { return -g.reconstructability[f]; });
+  for (const auto& [name, m] : scores.metrics) pred[name] = metrics_json(m);
   row["predictors"] = pred;
   if (const char* dump = std::getenv("MESHNBV_QUALITY_DUMP")) {  // per-face CSV, for analysis
     std::ofstream csv(std::string(dump) + "_" + c.name + ".csv");
@@ -237,7 +146,9 @@ int main(int argc, char** argv) {
     for (const auto& c : test::quality_cases()) {
       if (!only.empty() && std::find(only.begin(), only.end(), c.name) == only.end()) continue;
       const double tc = now_s();
-      Prepared p = c.kind == "recon" ? prepare_recon(c, cache) : prepare_synthetic(c);
+      Prepared p;
+      if (c.kind == "recon") p = prepare_recon(c, cache);
+      else static_cast<test::PreparedCase&>(p) = test::prepare_synthetic_case(c);
       json row = run_case(c, p);
       row["seconds"] = now_s() - tc;
       std::cout << row.dump() << std::endl;

@@ -239,8 +239,8 @@ const OptionTable<PriOptions>& pri_option_table() {
           [](O& o, double x) { o.offset_range = x; }),
       int_option<O>(
           "offset_steps", "Offset steps",
-          "offset: hypotheses on each side of the face (2 x this + 1 in all); the step is "
-          "offset_range / offset_steps",
+          "offset: hypotheses on each side of the face (2 x this + 1 in all), hypothesis j at "
+          "offset_range x (j / offset_steps)^1.5: finer near the face, coarser towards the range",
           closed(1, 32), [](const O& o) { return o.offset_steps; },
           [](O& o, std::int64_t x) { o.offset_steps = clamp_to_int(x); }),
       bool_option<O>("check_interior_occlusion", "Check interior occlusion",

@@ -14,6 +14,7 @@
 #include "meshnbv/options.h"
 #include "meshnbv/error.h"
 #include "meshnbv/raycaster.h"
+#include "meshnbv/results.h"
 
 namespace meshnbv {
 
@@ -81,6 +82,10 @@ constexpr double kMaxShrink = 0.5;
 // at most kOffsetMaxSide per side.
 constexpr double kOffsetSpacing = 1.0;
 constexpr int kOffsetMaxSide = 16;
+constexpr double kOffsetSpacingPower = 1.5;
+// The least residual cost (NCC error) that the offset's precision divides
+// by: rho = 0.998; a perfect match is not infinitely precise.
+constexpr double kMinResidualCost = 1e-3;
 
 double projected_area(const Vec2& a, const Vec2& b, const Vec2& c) {
   return 0.5 * std::abs((b - a).x() * (c - a).y() - (b - a).y() * (c - a).x());
@@ -169,7 +174,7 @@ PriFaceViews select_views(const TriangleMesh& mesh, const std::vector<Vec3>& nor
         cams[std::size_t(c.view)].project(centroid + h * normals[f], &p1))
       rate = std::max(rate, (p1 - p0).norm() / h);
   }
-  out.step = rate > 0 ? o.offset_range / double(o.offset_steps) / rate : 0.0;
+  out.step = rate > 0 ? 1.0 / rate : 0.0;
   if (o.samples_per_side <= 0)
     out.samples_per_side = std::clamp(int(std::ceil(max_edge * keep / kOffsetSpacing)), 2, kOffsetMaxSide);
   return out;
@@ -292,7 +297,16 @@ struct ViewSampler {
   bool linear;
   Mat3 KR;
   Vec3 Kt;
+  double offset_range;  // PriOptions::offset_range
 };
+
+// The offset of hypothesis j in [-steps, steps], in pixels of the fastest
+// view: range (|j| / steps)^1.5 with the sign of j -- finer near zero,
+// where most faces are, coarser towards the range.
+inline double hypothesis_pixels(int j, int steps, double range) {
+  const double t = std::pow(double(std::abs(j)) / double(steps), kOffsetSpacingPower);
+  return j < 0 ? -range * t : range * t;
+}
 
 // Samples the lattice of triangle (w0, w1, w2), rs subdivisions per side,
 // into `out`; false when a sample is behind the camera or off the image.
@@ -356,8 +370,9 @@ inline void sample_face(const TriangleMesh& mesh, std::size_t f, const PriFaceVi
     const Vec3 n = (v1 - v0).cross(v2 - v0).normalized();
     const std::size_t floats = lattice_points(rs) * std::size_t(view.channels);
     const int half = hypotheses / 2;
+    const double range = view.offset_range;
     for (int k = 0; k < hypotheses && ok; ++k) {
-      const Vec3 d = double(k - half) * fv.step * n;
+      const Vec3 d = hypothesis_pixels(k - half, half, range) * fv.step * n;
       ok = sample_lattice(view, w0 + d, w1 + d, w2 + d, rs, slot + std::size_t(k) * floats);
     }
   }
@@ -373,7 +388,8 @@ void sample_view(const PriInputs& in, const SampleBlock& block, std::size_t i) {
   const FloatImage plane =
       in.options.color ? FloatImage::rgb_of(*image) : FloatImage::luminance_of(*image);
   const PinholeCamera& cam = in.selection.cameras[i];
-  const ViewSampler view{plane, cam, in.channels, !cam.has_distortion(), cam.K() * cam.R, cam.K() * cam.t};
+  const ViewSampler view{plane, cam, in.channels, !cam.has_distortion(), cam.K() * cam.R, cam.K() * cam.t,
+                         in.options.offset_range};
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, faces.size()), [&](const auto& r) {
     for (std::size_t j = r.begin(); j < r.end(); ++j) {
       const auto [f, k] = faces[j];
@@ -386,6 +402,8 @@ void sample_view(const PriInputs& in, const SampleBlock& block, std::size_t i) {
 struct PairErrors {
   double sum = 0;
   std::size_t pairs = 0;  // pairs that count (NCC skips textureless ones)
+  double curvature = 0;   // offset: cost curvature at the minimum (per pixel^2)
+  double best_cost = 0;   // offset: the least cost
 };
 
 // The error of every pair of a face's patches (n floats each); `stats` is
@@ -442,12 +460,19 @@ PairErrors offset_errors(const std::vector<const float*>& patches, std::size_t r
   if (e.pairs == 0) return e;
   const std::vector<double>& c = *costs;
   const int best = int(std::min_element(c.begin(), c.end()) - c.begin());
-  double frac = 0;
+  double x = hypothesis_pixels(best - half, half, o.offset_range);
   if (best > 0 && best + 1 < hypotheses && std::isfinite(c[best - 1]) && std::isfinite(c[best + 1])) {
-    const double curvature = c[best - 1] - 2 * c[best] + c[best + 1];
-    if (curvature > 0) frac = std::clamp(0.5 * (c[best - 1] - c[best + 1]) / curvature, -0.5, 0.5);
+    // The vertex of the parabola through the best hypothesis and its two
+    // neighbours (unequal spacing), kept between those neighbours.
+    const double x0 = hypothesis_pixels(best - 1 - half, half, o.offset_range);
+    const double x2 = hypothesis_pixels(best + 1 - half, half, o.offset_range);
+    const double d0 = (c[best - 1] - c[best]) / (x0 - x), d2 = (c[best + 1] - c[best]) / (x2 - x);
+    const double a = (d2 - d0) / (x2 - x0);  // curvature / 2
+    if (a > 0) x = std::clamp(0.5 * (x + x2 - d2 / a), x0, x2);
+    e.curvature = std::max(a, 0.0);
   }
-  e.sum = double(best - half) + frac;
+  e.best_cost = c[best];
+  e.sum = x;  // pixels of the fastest view
   return e;
 }
 
@@ -465,7 +490,7 @@ float texture_of(const std::vector<const float*>& patches, std::size_t at, std::
 }
 
 // PRI, views, status and evidence of every face of the block from its samples.
-void score_block(const PriInputs& in, const SampleBlock& block, PriResult* result) {
+void score_block(const PriInputs& in, const SampleBlock& block, PriResult* result, std::vector<float>* precision) {
   const std::vector<PriFaceViews>& fv = in.selection.faces;
   const int hyps = hypotheses(in.options);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(block.begin, block.end), [&](const auto& r) {
@@ -497,6 +522,13 @@ void score_block(const PriInputs& in, const SampleBlock& block, PriResult* resul
       }
       // offset: signed here; smooth_offsets() averages and takes the magnitude.
       result->pri[f] = offset ? float(e.sum * fv[f].step) : float(e.sum / double(e.pairs));
+      // offset: the estimate's precision (inverse variance, up to a common
+      // factor) by the Laplace approximation of the sweep: the cost's
+      // curvature at its minimum times the comparisons made (views x
+      // samples) over the residual noise, the least cost. A minimum at an
+      // end of the sweep has no curvature: no weight.
+      if (offset)
+        (*precision)[f] = float(e.curvature * double(e.pairs) * double(n) / std::max(e.best_cost, kMinResidualCost));
       result->status[f] = FaceStatus::Observed;
     }
   });
@@ -545,12 +577,12 @@ void support_faces(const TriangleMesh& mesh, const VertexFaces& vf, std::size_t 
 }
 
 // The offset measure's support: each observed face's signed offset becomes
-// the Gaussian-weighted mean (sigma = support_radius pixels of the face's
-// reference view, on the distance between centroids, cut at 2 sigma) over
-// the observed faces connected to it within that distance; PRI is its
-// magnitude.
+// the weighted mean over the observed faces connected to it within 2 sigma
+// (sigma = support_radius pixels of the face's reference view, on the
+// distance between centroids), each weighted by a Gaussian of that distance
+// times its estimate's `precision` (score_block); PRI is its magnitude.
 void smooth_offsets(const TriangleMesh& mesh, const PriViewSelection& selection, const PriOptions& o,
-                    PriResult* result) {
+                    const std::vector<float>& precision, PriResult* result) {
   const std::size_t F = mesh.num_faces();
   const std::vector<float> signed_offset = result->pri;
   const VertexFaces vf(mesh);
@@ -565,15 +597,29 @@ void smooth_offsets(const TriangleMesh& mesh, const PriViewSelection& selection,
       }
       support_faces(mesh, vf, f, 2 * sigma, &near, &frontier);
       const Vec3 c = mesh.face_centroid(f);
-      double sum = 0, weight = 0;
+      double sum = 0, weight = 0, at_end = 0, all = 0;
       for (std::uint32_t g : near) {
         if (result->status[g] != FaceStatus::Observed) continue;
         const double d2 = (mesh.face_centroid(g) - c).squaredNorm();
-        const double w = std::exp(-d2 / (2 * sigma * sigma));
+        const double gauss = std::exp(-d2 / (2 * sigma * sigma));
+        const double w = gauss * precision[g];
         sum += w * signed_offset[g];
         weight += w;
+        all += gauss;
+        if (!(precision[g] > 0)) at_end += gauss;
       }
-      result->pri[f] = float(std::abs(sum / weight));
+      double value = weight > 0 ? std::abs(sum / weight) : std::abs(signed_offset[f]);
+      // Where most of the support has its best offset at an end of the
+      // sweep (no minimum inside it: the error exceeds the range, or
+      // nothing matches), such a face keeps that end if its own evidence
+      // holds (3 views or more, texture at least kLowTexture): the few
+      // neighbours with a minimum cannot vouch for a smaller error. An
+      // isolated face at an end, or one on two views or low texture, is a
+      // failed match among good ones and is smoothed.
+      const bool evidence = result->pri_pairs[f] >= 2 && result->pri_texture[f] >= kLowTexture;
+      if (!(precision[f] > 0) && evidence && at_end >= 0.5 * all)
+        value = std::max(value, double(std::abs(signed_offset[f])));
+      result->pri[f] = float(value);
     }
   });
 }
@@ -603,6 +649,7 @@ PriResult compute_pri(const Scene& scene, const PriOptions& options,
   result.pri_samples.assign(F, 0);
   result.pri_texture.assign(F, std::numeric_limits<float>::quiet_NaN());
   result.views_used = selection.image_views.size();
+  std::vector<float> precision(F, 0.0f);
 
   const int threads = options.threads > 0 ? options.threads : tbb::this_task_arena::max_concurrency();
   tbb::task_arena arena(threads);
@@ -614,10 +661,10 @@ PriResult compute_pri(const Scene& scene, const PriOptions& options,
         const double done = (double(block.begin) + double(block.end - block.begin) * (i + 1) / views) / F;
         report_progress(progress, 0.95 * done, "pri");
       }
-      score_block(in, block, &result);
+      score_block(in, block, &result, &precision);
       begin = block.end;
     }
-    if (options.measure == Measure::Offset) smooth_offsets(scene.mesh, selection, options, &result);
+    if (options.measure == Measure::Offset) smooth_offsets(scene.mesh, selection, options, precision, &result);
   });
   count_statuses(&result);
   report_progress(progress, 1.0, "pri");

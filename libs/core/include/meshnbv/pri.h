@@ -62,8 +62,9 @@ struct PriOptions {
   double support_radius = 4.0;  // pixels
   // offset: offsets swept along the normal, up to this disparity (pixels in
   // the view where a normal offset moves the face most), both directions.
-  double offset_range = 2.0;  // pixels
-  // offset: hypotheses per side of zero (the step is offset_range / this).
+  double offset_range = 3.0;  // pixels
+  // offset: hypotheses per side of zero; hypothesis j sits at
+  // offset_range (j / offset_steps)^1.5 (finer near the face).
   int offset_steps = 4;
   VisibilityOptions visibility;
 
@@ -97,7 +98,7 @@ struct PriFaceViews {
   int samples_per_side = 0;  // r of the lattice (options' value or the automatic rule)
   double shrink = 0;         // lattice contraction towards the centroid (edge_margin)
   int reference = 0;         // offset: position in `views` of the reference view
-  double step = 0;           // offset: scene units between two hypotheses
+  double step = 0;           // offset: scene units per pixel of disparity in the fastest view
   double pixel = 0;          // offset: scene units per pixel at the centroid in the reference view
 };
 struct PriViewSelection {
