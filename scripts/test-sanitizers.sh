@@ -25,8 +25,8 @@ JOBS=${MESHNBV_JOBS:-$(nproc)}
 EXCLUDE=${MESHNBV_ASAN_EXCLUDE-'^(options/front_ends|cli/loop)$|PriFindsDegradation|PriQuality\.|QualityIndex'}
 # cli/extreme_options runs every numeric flag with each of its values; here
 # with the values that reach different code (negative, zero, the smallest
-# double, beyond int, huge, NaN, infinite): 7 of its 10.
-export MESHNBV_EXTREME_VALUES=${MESHNBV_EXTREME_VALUES-"-1 0 1e-308 2147483648 1e308 nan -inf"}
+# double, beyond int and int64, huge, NaN, infinite): 8 of its 10.
+export MESHNBV_EXTREME_VALUES=${MESHNBV_EXTREME_VALUES-"-1 0 1e-308 2147483648 99999999999999999999 1e308 nan -inf"}
 
 rm -rf "$BUILD"
 mkdir -p "$BUILD"
