@@ -16,6 +16,7 @@
 #include "meshnbv/renderer.h"
 #include "meshnbv/results.h"
 #include "meshnbv/synth/generators.h"
+#include "plane_scene.h"
 #include "test_util.h"
 
 using namespace meshnbv;
@@ -27,23 +28,7 @@ const Material kFlat = {Pattern::Noise, Vec3(0.5, 0.5, 0.5), Vec3(0.5, 0.5, 0.5)
 const std::vector<Vec3> kFourEyes = {{0.5, -1.0, 5.0}, {-1.5, 0.5, 5.0}, {1.5, 1.0, 4.5}, {0.0, 2.0, 5.0}};
 
 Scene plane_scene(const std::string& name, const Material& material, const std::vector<Vec3>& eyes) {
-  const std::string dir = test::temp_dir("pri_evidence_" + name);
-  const TriangleMesh truth = synth::make_ground(Vec3(-2, -2, 0), Vec3(2, 2, 0), 0.5, 0);
-  const RayCaster caster(truth);
-  const SolidTexture texture(3, {material}, 0.1);
-  Scene scene;
-  scene.mesh = truth;
-  scene.mesh.face_attributes.clear();
-  for (std::size_t i = 0; i < eyes.size(); ++i) {
-    View v;
-    v.label = "v" + std::to_string(i);
-    v.camera = PinholeCamera::look_at(eyes[i], Vec3(0, 0, 0), Vec3(0, 1, 0.3), 180, 180, 99.5, 74.5, 200, 150);
-    v.image_path = dir + "/" + v.label + ".png";
-    render({&truth, &caster, &texture, truth.face_attribute(synth::kMaterialAttribute)}, v.camera)
-        .save(v.image_path);
-    scene.views.push_back(v);
-  }
-  return scene;
+  return test::plane_scene("pri_evidence_" + name, material, eyes);
 }
 
 // Faces away from the plane's border (the border's samples see the sky).

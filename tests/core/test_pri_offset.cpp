@@ -10,10 +10,7 @@
 #include <vector>
 
 #include "meshnbv/pri.h"
-#include "meshnbv/raycaster.h"
-#include "meshnbv/renderer.h"
-#include "meshnbv/synth/generators.h"
-#include "test_util.h"
+#include "plane_scene.h"
 
 using namespace meshnbv;
 
@@ -22,25 +19,14 @@ namespace {
 const Material kNoise = {Pattern::Noise, Vec3(0.7, 0.6, 0.5), Vec3(0.3, 0.3, 0.3), 0.5, 0.45};
 const std::vector<Vec3> kEyes = {{0.5, -1.0, 5.0}, {-1.5, 0.5, 5.0}, {1.5, 1.0, 4.5}, {0.0, 2.0, 5.0}};
 
-// The views of the true plane z = 0 (4 m x 4 m, faces of 0.25 m), 400x300.
+// The views of the true plane z = 0 (faces of 0.25 m), 400x300, f = 360 px.
 Scene rendered_plane() {
-  const std::string dir = test::temp_dir("pri_offset");
-  const TriangleMesh truth = synth::make_ground(Vec3(-2, -2, 0), Vec3(2, 2, 0), 0.25, 0);
-  const RayCaster caster(truth);
-  const SolidTexture texture(5, {kNoise}, 0.05);
-  Scene scene;
-  scene.mesh = truth;
-  scene.mesh.face_attributes.clear();
-  for (std::size_t i = 0; i < kEyes.size(); ++i) {
-    View v;
-    v.label = "v" + std::to_string(i);
-    v.camera = PinholeCamera::look_at(kEyes[i], Vec3(0, 0, 0), Vec3(0, 1, 0.3), 360, 360, 199.5, 149.5, 400, 300);
-    v.image_path = dir + "/" + v.label + ".png";
-    render({&truth, &caster, &texture, truth.face_attribute(synth::kMaterialAttribute)}, v.camera)
-        .save(v.image_path);
-    scene.views.push_back(v);
-  }
-  return scene;
+  test::PlaneSceneOptions o;
+  o.edge = 0.25;
+  o.texture_seed = 5;
+  o.texture_scale = 0.05;
+  o.scale = 2;
+  return test::plane_scene("pri_offset", kNoise, kEyes, o);
 }
 
 // The scene's mesh moved by dz along the plane's normal.
