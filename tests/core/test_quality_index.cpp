@@ -68,8 +68,8 @@ INSTANTIATE_TEST_SUITE_P(Bench, QualityIndex, ::testing::ValuesIn([] {
                              if (c.kind != "recon") out.push_back(c);
                            return out;
                          }()),
-                         [](const auto& info) {
-                           std::string name = info.param.name;
+                         [](const auto& test_info) {
+                           std::string name = test_info.param.name;
                            std::replace(name.begin(), name.end(), '.', '_');
                            return name;
                          });

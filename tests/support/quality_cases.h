@@ -11,18 +11,15 @@
 
 #include <algorithm>
 #include <map>
-#include <memory>
 #include <ostream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "meshnbv/eval/quality.h"
 #include "meshnbv/pri.h"
 
-#include "meshnbv/raycaster.h"
-#include "meshnbv/renderer.h"
 #include "meshnbv/synth/project.h"
-#include "meshnbv/texture.h"
 
 namespace meshnbv::test {
 
@@ -90,19 +87,6 @@ struct PreparedCase {
   double footprint = 0;
 };
 
-// Renders the truth into the scene's views, in memory, as the synthetic
-// projects do (libs/synth/src/project.cpp: textures band-limited to 8 px).
-inline void render_views_in_memory(const synth::SynthOptions& o, PreparedCase& p) {
-  constexpr double kBandLimitPixels = 8.0;
-  const RayCaster caster(p.truth);
-  const SolidTexture texture(o.seed, default_materials(), kBandLimitPixels * p.footprint);
-  RenderInputs in{&p.truth, &caster, &texture, p.truth.face_attribute(synth::kMaterialAttribute)};
-  for (auto& v : p.scene.views) {
-    v.image_path.clear();
-    v.pixels = std::make_shared<const Image>(render(in, v.camera, o.render));
-  }
-}
-
 // A field or local case, generated and rendered (no files).
 inline PreparedCase prepare_synthetic_case(const QualityCase& c) {
   synth::SynthOptions o = quality_case_options(c);
@@ -117,12 +101,12 @@ inline PreparedCase prepare_synthetic_case(const QualityCase& c) {
     o.degradations = {d};
   }
   synth::SynthProject sp = synth::make_synthetic_project(o);
+  synth::render_synthetic_views(o, &sp);
   PreparedCase p;
-  p.truth = sp.truth;
-  p.scene = sp.scene;
-  p.error = sp.gt_error;
+  p.truth = std::move(sp.truth);
+  p.scene = std::move(sp.scene);
+  p.error = std::move(sp.gt_error);
   p.footprint = footprint_of(p.scene, p.truth);
-  render_views_in_memory(o, p);
   return p;
 }
 

@@ -234,10 +234,26 @@ struct PriInputs {
   const PriViewSelection& selection;
   const PriOptions& options;
   int channels;  // 3 with options.color, else 1 (luminance)
+  // offset: the hypotheses, in pixels of disparity of the fastest view
+  // (hypothesis_offsets); empty for the other measures.
+  std::vector<double> hypotheses_px;
 };
 
 // Lattices per (face, view): one per offset hypothesis, else one.
 int hypotheses(const PriOptions& o) { return o.measure == Measure::Offset ? 2 * o.offset_steps + 1 : 1; }
+
+// The offset sweep's hypotheses j = -steps..steps, in pixels of the fastest
+// view: offset_range (|j| / steps)^1.5 with the sign of j -- finer near
+// zero, where most faces are, coarser towards the range.
+std::vector<double> hypothesis_offsets(const PriOptions& o) {
+  std::vector<double> out;
+  if (o.measure != Measure::Offset) return out;
+  for (int j = -o.offset_steps; j <= o.offset_steps; ++j) {
+    const double t = std::pow(double(std::abs(j)) / double(o.offset_steps), kOffsetSpacingPower);
+    out.push_back(j < 0 ? -o.offset_range * t : o.offset_range * t);
+  }
+  return out;
+}
 
 // Floats of one lattice of face fv, and of its (face, view) slot.
 std::size_t lattice_floats(const PriInputs& in, const PriFaceViews& fv) {
@@ -297,16 +313,7 @@ struct ViewSampler {
   bool linear;
   Mat3 KR;
   Vec3 Kt;
-  double offset_range;  // PriOptions::offset_range
 };
-
-// The offset of hypothesis j in [-steps, steps], in pixels of the fastest
-// view: range (|j| / steps)^1.5 with the sign of j -- finer near zero,
-// where most faces are, coarser towards the range.
-inline double hypothesis_pixels(int j, int steps, double range) {
-  const double t = std::pow(double(std::abs(j)) / double(steps), kOffsetSpacingPower);
-  return j < 0 ? -range * t : range * t;
-}
 
 // Samples the lattice of triangle (w0, w1, w2), rs subdivisions per side,
 // into `out`; false when a sample is behind the camera or off the image.
@@ -354,7 +361,7 @@ inline bool sample_lattice(const ViewSampler& view, const Vec3& w0, const Vec3& 
 // zero); NaN in slot[0] when the view is unusable there (a sample behind
 // the camera or off the image).
 inline void sample_face(const TriangleMesh& mesh, std::size_t f, const PriFaceViews& fv,
-                        const ViewSampler& view, int hypotheses, float* slot) {
+                        const ViewSampler& view, const std::vector<double>& hypotheses_px, float* slot) {
   const int rs = fv.samples_per_side;
   const Face& face = mesh.faces[f];
   const Vec3 &v0 = mesh.vertices[face[0]], &v1 = mesh.vertices[face[1]], &v2 = mesh.vertices[face[2]];
@@ -364,16 +371,14 @@ inline void sample_face(const TriangleMesh& mesh, std::size_t f, const PriFaceVi
   const Vec3 g = (v0 + v1 + v2) / 3.0;
   const Vec3 w0 = g + keep * (v0 - g), w1 = g + keep * (v1 - g), w2 = g + keep * (v2 - g);
   bool ok = true;
-  if (hypotheses == 1) {
+  if (hypotheses_px.empty()) {
     ok = sample_lattice(view, w0, w1, w2, rs, slot);
   } else {
     const Vec3 n = (v1 - v0).cross(v2 - v0).normalized();
     const std::size_t floats = lattice_points(rs) * std::size_t(view.channels);
-    const int half = hypotheses / 2;
-    const double range = view.offset_range;
-    for (int k = 0; k < hypotheses && ok; ++k) {
-      const Vec3 d = hypothesis_pixels(k - half, half, range) * fv.step * n;
-      ok = sample_lattice(view, w0 + d, w1 + d, w2 + d, rs, slot + std::size_t(k) * floats);
+    for (std::size_t k = 0; k < hypotheses_px.size() && ok; ++k) {
+      const Vec3 d = hypotheses_px[k] * fv.step * n;
+      ok = sample_lattice(view, w0 + d, w1 + d, w2 + d, rs, slot + k * floats);
     }
   }
   if (!ok) slot[0] = std::numeric_limits<float>::quiet_NaN();  // view unusable here
@@ -388,12 +393,11 @@ void sample_view(const PriInputs& in, const SampleBlock& block, std::size_t i) {
   const FloatImage plane =
       in.options.color ? FloatImage::rgb_of(*image) : FloatImage::luminance_of(*image);
   const PinholeCamera& cam = in.selection.cameras[i];
-  const ViewSampler view{plane, cam, in.channels, !cam.has_distortion(), cam.K() * cam.R, cam.K() * cam.t,
-                         in.options.offset_range};
+  const ViewSampler view{plane, cam, in.channels, !cam.has_distortion(), cam.K() * cam.R, cam.K() * cam.t};
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, faces.size()), [&](const auto& r) {
     for (std::size_t j = r.begin(); j < r.end(); ++j) {
       const auto [f, k] = faces[j];
-      sample_face(in.scene.mesh, f, fv[f], view, hypotheses(in.options),
+      sample_face(in.scene.mesh, f, fv[f], view, in.hypotheses_px,
                   block.slot(f, std::size_t(k), slot_floats(in, fv[f])));
     }
   });
@@ -429,16 +433,19 @@ PairErrors pair_errors(const std::vector<const float*>& patches, std::size_t n, 
   return e;
 }
 
-// The offset measure on a face's patches (each `hypotheses` lattices of n
-// floats; `ref` the reference view's): for every hypothesis the mean NCC
-// error of the other views against the reference, then the hypothesis of
-// least error, refined by a parabola through it and its neighbours. Sets
-// e.sum to the offset in steps (signed) and e.pairs to the views compared
-// at zero offset; e.pairs = 0 when the reference or every other view is
-// textureless at zero offset.
+// The offset measure on a face's patches (each one lattice of n floats per
+// hypothesis of x_px, the hypotheses in pixels; `ref` the reference
+// view's): for every hypothesis the mean NCC error of the other views
+// against the reference, then the hypothesis of least error, refined by a
+// parabola through it and its neighbours. Sets e.sum to the offset in
+// pixels of the fastest view (signed), e.curvature and e.best_cost at that
+// minimum (curvature 0 at an end of the sweep), and e.pairs to the views
+// compared at zero offset; e.pairs = 0 when the reference or every other
+// view is textureless at zero offset.
 PairErrors offset_errors(const std::vector<const float*>& patches, std::size_t ref, std::size_t n,
-                         int hypotheses, const PriOptions& o, std::vector<double>* costs) {
+                         const std::vector<double>& x_px, const PriOptions& o, std::vector<double>* costs) {
   PairErrors e;
+  const int hypotheses = int(x_px.size());
   const int half = hypotheses / 2;
   costs->assign(std::size_t(hypotheses), std::numeric_limits<double>::infinity());
   for (int k = 0; k < hypotheses; ++k) {
@@ -460,12 +467,11 @@ PairErrors offset_errors(const std::vector<const float*>& patches, std::size_t r
   if (e.pairs == 0) return e;
   const std::vector<double>& c = *costs;
   const int best = int(std::min_element(c.begin(), c.end()) - c.begin());
-  double x = hypothesis_pixels(best - half, half, o.offset_range);
+  double x = x_px[std::size_t(best)];
   if (best > 0 && best + 1 < hypotheses && std::isfinite(c[best - 1]) && std::isfinite(c[best + 1])) {
     // The vertex of the parabola through the best hypothesis and its two
     // neighbours (unequal spacing), kept between those neighbours.
-    const double x0 = hypothesis_pixels(best - 1 - half, half, o.offset_range);
-    const double x2 = hypothesis_pixels(best + 1 - half, half, o.offset_range);
+    const double x0 = x_px[std::size_t(best - 1)], x2 = x_px[std::size_t(best + 1)];
     const double d0 = (c[best - 1] - c[best]) / (x0 - x), d2 = (c[best + 1] - c[best]) / (x2 - x);
     const double a = (d2 - d0) / (x2 - x0);  // curvature / 2
     if (a > 0) x = std::clamp(0.5 * (x + x2 - d2 / a), x0, x2);
@@ -513,7 +519,7 @@ void score_block(const PriInputs& in, const SampleBlock& block, PriResult* resul
       if (patches.size() < 2) continue;  // unobserved
       result->pri_texture[f] = texture_of(patches, std::size_t(hyps / 2) * n, n);
       const bool offset = in.options.measure == Measure::Offset;
-      const PairErrors e = offset ? offset_errors(patches, ref, n, hyps, in.options, &costs)
+      const PairErrors e = offset ? offset_errors(patches, ref, n, in.hypotheses_px, in.options, &costs)
                                   : pair_errors(patches, n, in.options, &stats);
       result->pri_pairs[f] = int(e.pairs);
       if (e.pairs == 0) {
@@ -638,7 +644,7 @@ PriResult compute_pri(const Scene& scene, const PriOptions& options,
                       const ProgressCallback& progress) {
   const auto start = std::chrono::steady_clock::now();
   const PriViewSelection selection = select_pri_views(scene, options, progress);
-  const PriInputs in{scene, selection, options, options.color ? 3 : 1};
+  const PriInputs in{scene, selection, options, options.color ? 3 : 1, hypothesis_offsets(options)};
   const std::size_t F = scene.mesh.num_faces();
   const std::size_t views = selection.cameras.size();
   PriResult result;
@@ -649,7 +655,8 @@ PriResult compute_pri(const Scene& scene, const PriOptions& options,
   result.pri_samples.assign(F, 0);
   result.pri_texture.assign(F, std::numeric_limits<float>::quiet_NaN());
   result.views_used = selection.image_views.size();
-  std::vector<float> precision(F, 0.0f);
+  // offset: each estimate's precision (score_block), for smooth_offsets.
+  std::vector<float> precision(options.measure == Measure::Offset ? F : 0, 0.0f);
 
   const int threads = options.threads > 0 ? options.threads : tbb::this_task_arena::max_concurrency();
   tbb::task_arena arena(threads);

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <sstream>
 
 #include <opencv2/core.hpp>
@@ -96,6 +97,20 @@ SolidTexture make_texture(const SynthOptions& o, const TriangleMesh& truth,
   std::nth_element(footprint.begin(), footprint.begin() + footprint.size() / 2, footprint.end());
   return SolidTexture(o.seed, materials, kBandLimitPixels * footprint[footprint.size() / 2]);
 }
+
+}  // namespace
+
+void render_synthetic_views(const SynthOptions& o, SynthProject* p) {
+  const RayCaster caster(p->truth);
+  const SolidTexture texture = make_texture(o, p->truth, p->scene.views);
+  RenderInputs in{&p->truth, &caster, &texture, p->truth.face_attribute(kMaterialAttribute)};
+  for (View& v : p->scene.views) {
+    v.image_path.clear();
+    v.pixels = std::make_shared<const Image>(render(in, v.camera, o.render));
+  }
+}
+
+namespace {
 
 std::string describe(const SynthOptions& o) {
   std::ostringstream ss;

@@ -44,6 +44,11 @@ struct SynthProject {
 // Builds the meshes and cameras (no images).
 SynthProject make_synthetic_project(const SynthOptions& options);
 
+// Renders the truth into every view of `project`, in memory (View::pixels,
+// no image path), with the texture and render settings that
+// write_synthetic_project uses: the same images without files.
+void render_synthetic_views(const SynthOptions& options, SynthProject* project);
+
 // Writes into `folder`: truth.ply, degraded.ply (face attribute gt_error),
 // gt_error.csv, images/view_NNN.png, project.mlp (degraded mesh + rasters),
 // scene.json, README.md. Refuses a non-empty folder unless overwrite.
