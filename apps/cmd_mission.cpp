@@ -7,133 +7,36 @@
 #include <sstream>
 
 #include "commands.h"
-#include "meshnbv/energy.h"
 #include "meshnbv/error.h"
 #include "meshnbv/io/file_util.h"
-#include "meshnbv/mission/suggestions.h"
-#include "meshnbv/mission/writers.h"
+#include "meshnbv/mission/scene_mission.h"
 #include "meshnbv/mission_options.h"
 #include "meshnbv/options.h"
-#include "meshnbv/raycaster.h"
 
 namespace meshnbv::cli {
-namespace {
 
-namespace fs = std::filesystem;
 using namespace meshnbv::mission;
+
+namespace {
 
 struct MissionArgs {
   SceneInput input;
-  MissionOptions options;
   OptionFlags flags;
-  std::string suggestions, out, georef, takeoff, takeoff_wgs84, keep_out;
-  std::vector<std::string> boxes;
+  MissionFlags mission;
+  std::string suggestions, out;
   bool overwrite = false;
 };
 
-std::vector<double> numbers(const std::string& text, const std::string& what, std::size_t min,
-                            std::size_t max) {
-  std::vector<double> v;
-  std::stringstream ss(text);
-  std::string item;
-  while (std::getline(ss, item, ',')) v.push_back(io::parse_double(item, what, -1, "coordinate"));
-  if (v.size() < min || v.size() > max) throw Error(what + " takes " + std::to_string(min) +
-                                                    (min == max ? "" : " or " + std::to_string(max)) +
-                                                    " comma-separated numbers, got '" + text + "'");
-  return v;
-}
-
-Georeference scene_georef(const MissionArgs& a, const Scene& scene) {
-  if (!a.georef.empty()) return read_georef_file(a.georef);
-  const std::vector<GpsFix> fixes = gps_fixes(scene);
-  if (fixes.empty())
-    throw Error("no georeference: the scene's photos carry no EXIF GPS and no --georef FILE was given");
-  return fit_georef(fixes);
-}
-
-// --takeoff, --takeoff-wgs84, or the ground below the first photo: the
-// lowest mesh point along the vertical there (the mesh's lowest height).
-Vec3 takeoff_point(const MissionArgs& a, const Scene& scene, const GeoFrame& frame) {
-  if (!a.takeoff.empty()) {
-    const std::vector<double> v = numbers(a.takeoff, "--takeoff", 3, 3);
-    return Vec3(v[0], v[1], v[2]);
-  }
-  double lowest = std::numeric_limits<double>::infinity();
-  for (const Vec3& v : scene.mesh.vertices) lowest = std::min(lowest, frame.up().dot(v));
-  if (!a.takeoff_wgs84.empty()) {
-    const std::vector<double> v = numbers(a.takeoff_wgs84, "--takeoff-wgs84", 2, 3);
-    const Vec3 p = frame.from_wgs84({v[0], v[1], v.size() == 3 ? v[2] : 0.0});
-    return v.size() == 3 ? p : Vec3(p + (lowest - frame.up().dot(p)) * frame.up());
-  }
-  for (const View& view : scene.views)
-    if (view.has_image()) {
-      const Vec3 c = view.camera.center();
-      return c + (lowest - frame.up().dot(c)) * frame.up();
-    }
-  throw Error("no take-off point: give --takeoff x,y,z or --takeoff-wgs84 lat,lon");
-}
-
-// The next-view energy of a moved suggestion, with the suggestions' own
-// options and worst regions, against the scene's used views.
-Rescore energy_rescore(const Scene& scene, const RayCaster& caster, const SuggestionsFile& s,
-                       std::vector<std::unique_ptr<EnergyEvaluator>>* keep) {
-  SuggestOptions so;
-  if (!s.options.empty()) parse_options_json(s.options, suggest_option_table(), &so);
-  std::vector<Vec3> existing;
-  for (const View& v : scene.views)
-    if (v.has_image() && v.used) existing.push_back(v.camera.center());
-  for (const std::vector<int>& faces : s.region_faces) {
-    std::vector<float> pri(scene.mesh.faces.size(), std::nanf(""));
-    for (int f : faces)
-      if (std::size_t(f) >= pri.size()) throw Error("the suggestions' regions do not fit the scene's mesh");
-      else pri[std::size_t(f)] = 1.0f;
-    if (faces.empty()) {
-      keep->push_back(nullptr);
-      continue;
-    }
-    const WorstRegion region = worst_region(scene.mesh, pri, int(faces.size()));
-    keep->push_back(std::make_unique<EnergyEvaluator>(scene.mesh, caster, region, existing, so.energy));
-  }
-  return [keep](const PinholeCamera& c, int region) {
-    if (region < 0 || std::size_t(region) >= keep->size() || !(*keep)[std::size_t(region)])
-      return std::numeric_limits<double>::quiet_NaN();
-    return (*keep)[std::size_t(region)]->evaluate(c).total;
-  };
-}
-
-void check_outputs(const MissionArgs& a) {
-  io::check_can_write_folder(a.out);
-  for (const char* f : {"mission.kml", "mission.kmz", "litchi.csv", "mission.geojson", "waypoints.csv",
-                        "mission.json", "mission.svg"})
-    io::check_can_write((fs::path(a.out) / f).string(), a.overwrite);
-  if (!a.overwrite && fs::is_directory(a.out))
-    for (const auto& e : fs::directory_iterator(a.out))
-      if (e.path().filename().string().rfind("litchi_", 0) == 0)
-        throw Error("output " + e.path().string() + " exists (use --overwrite)");
-}
-
 void run_mission(MissionArgs& a) {
   a.flags.apply();
-  a.options.check();
-  check_outputs(a);
-  Scene scene = a.input.read();
-  if (scene.mesh.faces.empty()) throw Error("the scene has no mesh (give --mesh)");
+  a.mission.options.check();
+  check_mission_outputs(a.out, a.overwrite);
+  const Scene scene = a.input.read();
   const SuggestionsFile sug = read_suggestions_file(a.suggestions);
-  KeepOuts keep_outs;
-  if (!a.keep_out.empty()) keep_outs = read_keep_out_geojson(a.keep_out);
-  for (const std::string& b : a.boxes) keep_outs.boxes.push_back(parse_keep_out_box(b));
-  const GeoFrame frame(scene_georef(a, scene));
-  const RayCaster caster(scene.mesh);
-  const Airspace air(caster, frame, takeoff_point(a, scene, frame), a.options, keep_outs);
-  auto evaluators = std::make_shared<std::vector<std::unique_ptr<EnergyEvaluator>>>();
-  const Rescore rescore = energy_rescore(scene, caster, sug, evaluators.get());
-  const MissionPlan plan = plan_mission(sug.suggestions, air, rescore);
-  const auto files = mission_files(plan, frame, a.options, keep_outs, &scene.mesh);  // all in memory first
-  fs::create_directories(a.out);
-  for (const auto& [name, content] : files)
-    io::write_atomically((fs::path(a.out) / name).string(), [&](std::ostream& o) { o << content; },
-                         a.overwrite, true);
-  const Georeference& g = frame.georef();
+  const SceneMission m = plan_scene_mission(scene, sug, a.mission.request());  // all in memory first
+  write_mission_files(m, a.out, a.overwrite);
+  const MissionPlan& plan = m.plan;
+  const Georeference& g = m.frame->georef();
   std::cout << "georeference: " << g.source;
   if (!g.residuals.empty()) std::cout << ", rms residual " << g.rms_residual() << " m";
   std::cout << "\n";
@@ -148,6 +51,31 @@ void run_mission(MissionArgs& a) {
 
 }  // namespace
 
+void MissionFlags::add_to(CLI::App* cmd, OptionFlags* flags) {
+  cmd->add_option("--georef", georef,
+                  "Georeference: a JSON file {\"crs\": \"EPSG:32632\", \"transform\": [16 numbers, row-major "
+                  "scene -> CRS]}, 'ecef' (scene coordinates geocentric, EPSG:4978) or 'enu:LAT,LON,H' "
+                  "(east-north-up from that origin); otherwise the scene's own CRS, else its photos' EXIF GPS");
+  cmd->add_option("--takeoff", takeoff, "Take-off point x,y,z in scene coordinates");
+  cmd->add_option("--takeoff-wgs84", takeoff_wgs84,
+                  "Take-off point lat,lon[,ellipsoidal height] (without height: on the mesh's lowest level)");
+  cmd->add_option("--keep-out", keep_out,
+                  "Keep-out polygons: GeoJSON with properties floor, ceiling (metres above take-off)");
+  cmd->add_option("--keep-out-box", boxes, "Keep-out box xmin,ymin,zmin,xmax,ymax,zmax (scene "
+                                           "coordinates); repeatable");
+  flags->add(cmd, mission_option_table(), &options);
+}
+
+MissionRequest MissionFlags::request() const {
+  MissionRequest r;
+  r.georef = georef;
+  r.options = options;
+  if (!keep_out.empty()) r.keep_outs = read_keep_out_geojson(keep_out);
+  for (const std::string& b : boxes) r.keep_outs.boxes.push_back(parse_keep_out_box(b));
+  set_takeoff(takeoff, takeoff_wgs84, &r);
+  return r;
+}
+
 void add_mission_command(CLI::App& app) {
   auto a = std::make_shared<MissionArgs>();
   CLI::App* cmd = app.add_subcommand(
@@ -157,17 +85,7 @@ void add_mission_command(CLI::App& app) {
   a->input.add_to(cmd);
   cmd->add_option("--suggestions", a->suggestions, "Suggestions JSON (meshnbv suggest / run)")->required();
   cmd->add_option("--out", a->out, "Output folder")->required();
-  cmd->add_option("--georef", a->georef,
-                  "Georeference JSON {\"crs\": \"EPSG:32632\", \"transform\": [16 numbers, row-major "
-                  "scene -> CRS]}; otherwise fitted to the photos' EXIF GPS");
-  cmd->add_option("--takeoff", a->takeoff, "Take-off point x,y,z in scene coordinates");
-  cmd->add_option("--takeoff-wgs84", a->takeoff_wgs84,
-                  "Take-off point lat,lon[,ellipsoidal height] (without height: on the mesh's lowest level)");
-  cmd->add_option("--keep-out", a->keep_out,
-                  "Keep-out polygons: GeoJSON with properties floor, ceiling (metres above take-off)");
-  cmd->add_option("--keep-out-box", a->boxes, "Keep-out box xmin,ymin,zmin,xmax,ymax,zmax (scene "
-                                             "coordinates); repeatable");
-  a->flags.add(cmd, mission_option_table(), &a->options);
+  a->mission.add_to(cmd, &a->flags);
   cmd->add_flag("--overwrite", a->overwrite, "Replace existing output files");
   cmd->callback([a]() { run_mission(*a); });
 }

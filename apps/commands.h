@@ -3,6 +3,7 @@
 #include <CLI/CLI.hpp>
 
 #include "meshnbv/io/scene_io.h"
+#include "meshnbv/mission/scene_mission.h"
 #include "meshnbv/planner.h"
 #include "meshnbv/pri.h"
 #include "option_flags.h"
@@ -26,6 +27,18 @@ struct SceneInput {
 // its files do not exist unless `overwrite` (io::check_can_write_folder,
 // io::check_can_write). Throws Error otherwise.
 void check_colmap_output(const std::string& folder, bool overwrite);
+
+// The inputs of a drone mission as flags, shared by `mission` and `run`:
+// --georef, --takeoff, --takeoff-wgs84, --keep-out, --keep-out-box and the
+// mission option table (through `flags`, applied by the caller).
+struct MissionFlags {
+  MissionOptions options;
+  std::string georef, takeoff, takeoff_wgs84, keep_out;
+  std::vector<std::string> boxes;
+  void add_to(CLI::App* cmd, OptionFlags* flags);
+  // After flags->apply(): the request, keep-out files read. Throws Error.
+  mission::MissionRequest request() const;
+};
 
 // Subcommands run their work in a callback and throw meshnbv::Error on failure.
 void add_info_command(CLI::App& app);

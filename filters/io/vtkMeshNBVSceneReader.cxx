@@ -2,6 +2,7 @@
 
 #include "vtkCompositeDataSet.h"
 #include "vtkFieldData.h"
+#include "vtkIntArray.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
@@ -109,6 +110,17 @@ int vtkMeshNBVSceneReader::RequestData(
     format->SetName(vtkMeshNBV::SceneFormatName);
     format->InsertNextValue(scene.format);
     blocks->GetFieldData()->AddArray(format);
+    if (!scene.crs.empty())
+    {
+      vtkNew<vtkStringArray> crs;
+      crs->SetName(vtkMeshNBV::SceneCRSName);
+      crs->InsertNextValue(scene.crs);
+      blocks->GetFieldData()->AddArray(crs);
+      vtkNew<vtkIntArray> geocentric;
+      geocentric->SetName(vtkMeshNBV::SceneCRSGeocentricName);
+      geocentric->InsertNextValue(scene.crs_geocentric ? 1 : 0);
+      blocks->GetFieldData()->AddArray(geocentric);
+    }
 
     mesh->ShallowCopy(polydata);
     views->ShallowCopy(blocks);

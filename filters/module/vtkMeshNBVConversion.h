@@ -40,6 +40,11 @@ constexpr const char* MeshFileName = "MeshFileName";
 // Field data of the views output: the scene file and its format.
 constexpr const char* SceneFileName = "FileName";
 constexpr const char* SceneFormatName = "Format";
+// ... and, when the source places the scene on Earth (Scene::crs), its CRS
+// (vtkStringArray) and whether the coordinates are that CRS's geocentric
+// frame (vtkIntArray, 0 / 1).
+constexpr const char* SceneCRSName = "CRS";
+constexpr const char* SceneCRSGeocentricName = "CRSGeocentric";
 // Field data of the suggestions table: the core's JSON document.
 constexpr const char* SuggestionsJSONName = "SuggestionsJSON";
 

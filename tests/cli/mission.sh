@@ -72,13 +72,68 @@ fit = m["georeference"]["fit"]
 assert len(fit["photos"]) == 12 and fit["rms_residual_m"] < 0.5, fit["rms_residual_m"]
 PY
 
+# A scene in a local east-north-up frame (COLMAP's model_aligner
+# --alignment_type enu): every photo's WGS84 position against the closed-form
+# ENU -> ECEF -> geodetic conversion written out here (WGS84 ellipsoid,
+# Bowring's iteration), within 1 cm.
+out=$("$MESHNBV" mission "$S" --suggestions "$TMP/s.json" --georef enu:46.5,7.25,500 --out "$TMP/m_enu" 2>&1) \
+  || fail "mission --georef enu: $out"
+grep -q "expressed in EPSG:32632 (largest deviation" <<<"$out" || fail "ENU localized: $out"
+/usr/bin/python3 - "$TMP/m_enu/waypoints.csv" <<'PY' || fail "ENU positions"
+import csv, math, sys
+a, f = 6378137.0, 1 / 298.257223563
+e2 = f * (2 - f)
+lat0, lon0, h0 = math.radians(46.5), math.radians(7.25), 500.0
+def ecef(lat, lon, h):
+    n = a / math.sqrt(1 - e2 * math.sin(lat) ** 2)
+    return ((n + h) * math.cos(lat) * math.cos(lon), (n + h) * math.cos(lat) * math.sin(lon), (n * (1 - e2) + h) * math.sin(lat))
+o = ecef(lat0, lon0, h0)
+sl, cl, sp, cp = math.sin(lon0), math.cos(lon0), math.sin(lat0), math.cos(lat0)
+rows = list(csv.DictReader(open(sys.argv[1])))
+assert rows, "no waypoints"
+for r in rows:
+    e, n, u = float(r["x"]), float(r["y"]), float(r["z"])
+    X = o[0] - sl * e - sp * cl * n + cp * cl * u
+    Y = o[1] + cl * e - sp * sl * n + cp * sl * u
+    Z = o[2] + cp * n + sp * u
+    lon = math.atan2(Y, X)
+    p = math.hypot(X, Y)
+    lat = math.atan2(Z, p * (1 - e2))
+    for _ in range(10):
+        nn = a / math.sqrt(1 - e2 * math.sin(lat) ** 2)
+        h = p / math.cos(lat) - nn
+        lat = math.atan2(Z, p * (1 - e2 * nn / (nn + h)))
+    dn = (math.radians(float(r["latitude"])) - lat) * 6371000
+    de = (math.radians(float(r["longitude"])) - lon) * 6371000 * math.cos(lat)
+    dh = float(r["ellipsoidal_height"]) - h
+    assert math.sqrt(dn * dn + de * de + dh * dh) < 0.01, (r["label"], dn, de, dh)
+PY
+
+# run: the mission section of the report when the scene is georeferenced
+# (EXIF GPS here), and why not when it is not.
+out=$("$MESHNBV" run "$TMP/exif/scene.json" --top 3 --out "$TMP/run_exif" --quiet 2>&1) || fail "run with GPS: $out"
+grep -q "^mission: 3 photos in 1 flight(s)" <<<"$out" || fail "run's mission summary: $out"
+for f in mission.kml mission.kmz litchi.csv mission.geojson waypoints.csv mission.json mission.svg; do
+  [ -s "$TMP/run_exif/mission/$f" ] || fail "run: missing mission/$f"
+done
+grep -q "<h2>Flying the suggested views</h2>" "$TMP/run_exif/report.html" || fail "run: no mission section"
+grep -q "EXIF GPS of 12 photos" "$TMP/run_exif/report.html" || fail "run: the report lacks the georeference"
+grep -q "<svg" "$TMP/run_exif/report.html" || fail "run: the report lacks the top view"
+out=$("$MESHNBV" run "$S" --top 2 --out "$TMP/run_plain" --quiet 2>&1) || fail "run without GPS: $out"
+grep -q "No drone mission: no georeference" "$TMP/run_plain/report.html" || fail "run: no reason for the missing mission"
+[ -e "$TMP/run_plain/mission" ] && fail "run wrote a mission without a georeference"
+# Asked for (--georef) but impossible: the run fails before writing anything.
+expect_error "no suggestion can be flown" "$MESHNBV" run "$S" --top 2 --out "$TMP/run_bad" --quiet \
+  --georef "$TMP/georef.json" --max-altitude 3 --gimbal-pitch-max -85
+[ -e "$TMP/run_bad" ] && fail "run wrote results despite the mission's error"
+
 # Bad input: one line, nothing written.
 bad() {
   local fragment=$1 dir=$2; shift 2
   expect_error "$fragment" "$@" --out "$TMP/$dir"
   [ -e "$TMP/$dir" ] && fail "$dir written despite the error"
 }
-bad "no georeference: the scene's photos carry no EXIF GPS and no --georef FILE" none \
+bad "no georeference: the scene's source states no CRS, its photos carry no EXIF GPS, and no --georef" none \
   "$MESHNBV" mission "$S" --suggestions "$TMP/s.json"
 (cd "$TMP/exif" && /usr/bin/python3 -c "
 from PIL import Image
@@ -98,5 +153,7 @@ bad "min_altitude must be below max_altitude" alt "$MESHNBV" mission "$S" --sugg
 bad "--target-gsd must be" gsd "$MESHNBV" mission "$S" --suggestions "$TMP/s.json" --georef "$TMP/georef.json" --target-gsd -1
 echo '{"crs": "EPSG:32632", "transform": [1,0,0,0, 0,2,0,0, 0,0,1,0, 0,0,0,1]}' > "$TMP/skew.json"
 bad "similarity" skew "$MESHNBV" mission "$S" --suggestions "$TMP/s.json" --georef "$TMP/skew.json"
+bad "--georef enu: takes LAT,LON,H" enu2 "$MESHNBV" mission "$S" --suggestions "$TMP/s.json" --georef enu:46.5,7.25
+bad "the ENU origin must be" enu_range "$MESHNBV" mission "$S" --suggestions "$TMP/s.json" --georef enu:95,7.25,0
 bad "not a suggestions file" notsug "$MESHNBV" mission "$S" --suggestions "$TMP/georef.json" --georef "$TMP/georef.json"
 finish

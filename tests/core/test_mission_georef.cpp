@@ -5,6 +5,8 @@
 #include <fstream>
 #include <random>
 
+#include <Eigen/Geometry>
+
 #include <exiv2/exiv2.hpp>
 #include <gtest/gtest.h>
 #include <opencv2/imgcodecs.hpp>
@@ -152,6 +154,152 @@ TEST(MissionGeoref, ExifFitNeedsThreeWellSpreadPhotos) {
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("in a line"), std::string::npos) << e.what();
   }
+}
+
+// Geodesy written out (WGS84 ellipsoid), independent of PROJ: geodetic
+// (degrees, metres) to geocentric, and the east-north-up axes at a point.
+Vec3 ecef_of(double lat_deg, double lon_deg, double h) {
+  const double a = 6378137.0, f = 1 / 298.257223563, e2 = f * (2 - f);
+  const double lat = lat_deg * M_PI / 180, lon = lon_deg * M_PI / 180;
+  const double n = a / std::sqrt(1 - e2 * std::sin(lat) * std::sin(lat));
+  return Vec3((n + h) * std::cos(lat) * std::cos(lon), (n + h) * std::cos(lat) * std::sin(lon),
+              (n * (1 - e2) + h) * std::sin(lat));
+}
+Mat3 enu_axes(double lat_deg, double lon_deg) {  // columns: east, north, up in ECEF
+  const double lat = lat_deg * M_PI / 180, lon = lon_deg * M_PI / 180;
+  Mat3 m;
+  m.col(0) = Vec3(-std::sin(lon), std::cos(lon), 0);
+  m.col(1) = Vec3(-std::sin(lat) * std::cos(lon), -std::sin(lat) * std::sin(lon), std::cos(lat));
+  m.col(2) = Vec3(std::cos(lat) * std::cos(lon), std::cos(lat) * std::sin(lon), std::sin(lat));
+  return m;
+}
+
+// Geodetic positions over a square `size` metres across around (lat, lon),
+// 0 to 60 m up.
+std::vector<mission::Geodetic> site(double lat, double lon, double h, double size, int n) {
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(-0.5, 0.5), up(0, 60);
+  std::vector<mission::Geodetic> out;
+  for (int i = 0; i < n; ++i)
+    out.push_back({lat + u(rng) * size / 111132.0, lon + u(rng) * size / (111320.0 * std::cos(lat * M_PI / 180)),
+                   h + up(rng)});
+  return out;
+}
+
+// (d^2 + 2 d h) / R for a square site `size` metres across (d its
+// half-diagonal) and 60 m high: the sag of the ground below a plane and the
+// convergence of the verticals over the height (R the Earth's radius).
+double curvature_bound(double size) {
+  const double d = size / std::sqrt(2.0), h = 60;
+  return (d * d + 2 * d * h) / 6371000.0;
+}
+
+double metres_between(const mission::Geodetic& a, const mission::Geodetic& b) {
+  const double dn = (a.latitude - b.latitude) * M_PI / 180 * 6371000;
+  const double de = (a.longitude - b.longitude) * M_PI / 180 * 6371000 * std::cos(a.latitude * M_PI / 180);
+  return std::sqrt(dn * dn + de * de + (a.height - b.height) * (a.height - b.height));
+}
+
+// A scene in geocentric coordinates (a COLMAP model aligned to ECEF, here
+// also scaled and turned by a similarity): localized to UTM and every
+// point's WGS84 position within 1 cm of the truth over a 500 m site.
+TEST(MissionGeoref, GeocentricSceneWithinOneCentimetre) {
+  const auto truth = site(46.5, 7.25, 480, 500, 300);
+  Georeference g = mission::parse_georef_argument("ecef");
+  EXPECT_TRUE(mission::is_curved_frame(g));
+  // scene = S^-1 (ecef): scene units of 0.5 m, turned.
+  mission::Mat4 s = mission::Mat4::Identity();
+  s.topLeftCorner<3, 3>() = 0.5 * Eigen::AngleAxisd(0.4, Vec3(1, 2, 3).normalized()).toRotationMatrix();
+  s.topRightCorner<3, 1>() = ecef_of(46.5, 7.25, 480);
+  g.scene_to_crs = s;
+  std::vector<Vec3> scene;
+  for (const auto& t : truth) scene.push_back((s.inverse() * ecef_of(t.latitude, t.longitude, t.height).homogeneous()).head<3>());
+  const Georeference local = mission::localize_georef(g, scene);
+  EXPECT_EQ(local.crs, "EPSG:32632");
+  EXPECT_NE(local.source.find("largest deviation"), std::string::npos);
+  // No similarity follows the Earth's curvature: the deviation is of the
+  // order d^2 / R (d: the site's half-diagonal), and what is reported holds.
+  EXPECT_LT(local.deviation_m, curvature_bound(500));
+  const GeoFrame f(local);
+  EXPECT_NEAR(f.metres_per_unit(), 0.5, 0.5 * 1e-3);  // UTM's scale factor is within 1e-3 of 1
+  for (std::size_t i = 0; i < truth.size(); ++i) {
+    EXPECT_LT(metres_between(f.to_wgs84(scene[i]), truth[i]), local.deviation_m + 1e-3) << i;
+    EXPECT_LT((f.from_wgs84(f.to_wgs84(scene[i])) - scene[i]).norm() * f.metres_per_unit(), 0.01);
+  }
+  // Over a 100 m site (a building), within 1 cm.
+  const auto small = site(46.5, 7.25, 480, 100, 100);
+  std::vector<Vec3> small_scene;
+  for (const auto& t : small) small_scene.push_back((s.inverse() * ecef_of(t.latitude, t.longitude, t.height).homogeneous()).head<3>());
+  const GeoFrame fs(mission::localize_georef(g, small_scene));
+  for (std::size_t i = 0; i < small.size(); ++i) EXPECT_LT(metres_between(fs.to_wgs84(small_scene[i]), small[i]), 0.01) << i;
+  // The vertical of the localized frame is the local vertical.
+  const Vec3 up_ecef = enu_axes(46.5, 7.25).col(2);
+  EXPECT_GT((s.topLeftCorner<3, 3>() * f.up()).normalized().dot(up_ecef), std::cos(0.01 * M_PI / 180));
+}
+
+// COLMAP's --alignment_type enu: a tangent frame at the first photo.
+TEST(MissionGeoref, EnuSceneWithinOneCentimetre) {
+  const auto truth = site(-33.86, 151.2, 20, 800, 300);
+  const Georeference g = mission::parse_georef_argument("enu:-33.86,151.2,20");
+  ASSERT_TRUE(g.enu_origin.has_value());
+  const Vec3 o = ecef_of(-33.86, 151.2, 20);
+  const Mat3 axes = enu_axes(-33.86, 151.2);
+  std::vector<Vec3> scene;
+  for (const auto& t : truth) scene.push_back(axes.transpose() * (ecef_of(t.latitude, t.longitude, t.height) - o));
+  const Georeference local = mission::localize_georef(g, scene);
+  EXPECT_EQ(local.crs, "EPSG:32756");
+  EXPECT_LT(local.deviation_m, curvature_bound(800));
+  const GeoFrame f(local);
+  for (std::size_t i = 0; i < truth.size(); ++i)
+    EXPECT_LT(metres_between(f.to_wgs84(scene[i]), truth[i]), local.deviation_m + 1e-3) << i;
+  // The same through a file.
+  const Georeference file = mission::parse_georef_json(
+      R"({"crs": "ENU", "origin": [-33.86, 151.2, 20], "transform": [1,0,0,0, 0,1,0,0, 0,0,1,0, 0,0,0,1]})", "enu.json");
+  const GeoFrame ff(mission::localize_georef(file, scene));
+  EXPECT_LT(metres_between(ff.to_wgs84(scene[0]), truth[0]), local.deviation_m + 1e-3);
+}
+
+// A Metashape chunk's world frame: geocentric of the chunk CRS's datum.
+TEST(MissionGeoref, SceneCrsOfAGeoreferencedChunk) {
+  Scene scene;
+  scene.crs = "EPSG:4326";
+  scene.crs_geocentric = true;
+  const auto g = mission::scene_crs_georef(scene);
+  ASSERT_TRUE(g.has_value());
+  EXPECT_TRUE(mission::is_curved_frame(*g));
+  const auto truth = site(52.37, 4.89, 0, 300, 100);
+  std::vector<Vec3> points;
+  for (const auto& t : truth) points.push_back(ecef_of(t.latitude, t.longitude, t.height));
+  const Georeference local = mission::localize_georef(*g, points);
+  const GeoFrame f(local);
+  for (std::size_t i = 0; i < truth.size(); ++i)
+    EXPECT_LT(metres_between(f.to_wgs84(points[i]), truth[i]), local.deviation_m + 1e-3) << i;
+  EXPECT_LT(local.deviation_m, curvature_bound(300));
+  scene.crs = "EPSG:32631";  // a scene whose coordinates are in UTM 31 itself
+  scene.crs_geocentric = false;
+  EXPECT_EQ(mission::scene_crs_georef(scene)->crs, "EPSG:32631");
+  scene.crs.clear();
+  EXPECT_FALSE(mission::scene_crs_georef(scene).has_value());
+}
+
+TEST(MissionGeoref, CurvedFrameErrors) {
+  // 60 km across: far more than 1 m between any similarity and the Earth.
+  const auto wide = site(45, 9, 100, 60000, 200);
+  std::vector<Vec3> points;
+  for (const auto& t : wide) points.push_back(ecef_of(t.latitude, t.longitude, t.height));
+  MESHNBV_EXPECT_ERROR_CONTAINS(mission::localize_georef(mission::parse_georef_argument("ecef"), points),
+                                "too much of the Earth's curvature");
+  MESHNBV_EXPECT_ERROR_CONTAINS(mission::parse_georef_argument("enu:45,9"), "takes LAT,LON,H");
+  MESHNBV_EXPECT_ERROR_CONTAINS(mission::parse_georef_argument("enu:45,190,0"), "the ENU origin must be");
+  MESHNBV_EXPECT_ERROR_CONTAINS(
+      mission::parse_georef_json(R"({"crs": "ENU", "transform": [1,0,0,0, 0,1,0,0, 0,0,1,0, 0,0,0,1]})", "e.json"),
+      "needs \"origin\"");
+  MESHNBV_EXPECT_ERROR_CONTAINS(mission::localize_georef(mission::parse_georef_argument("ecef"), {Vec3::Zero()}),
+                                "at least 3");
+  // A geocentric file is accepted; a geographic one still is not.
+  EXPECT_NO_THROW(mission::parse_georef_json(
+      R"({"crs": "EPSG:4978", "transform": [1,0,0,0, 0,1,0,0, 0,0,1,0, 0,0,0,1]})", "ecef.json"));
+  MESHNBV_EXPECT_ERROR_CONTAINS(mission::GeoFrame(mission::parse_georef_argument("ecef")), "projected");
 }
 
 // A small JPEG written by OpenCV, tagged by exiv2 itself.

@@ -110,6 +110,7 @@ struct MsChunk {
   Vec3 translation = Vec3::Zero();
   double scale = 1;
   Eigen::Matrix4d component = Eigen::Matrix4d::Identity();  // component "0"
+  std::string reference;  // <reference> WKT; empty = none
 };
 
 Eigen::Matrix4d similarity(const Mat3& R, const Vec3& T, double s) {
@@ -154,6 +155,7 @@ std::string ms_xml(const MsChunk& c) {
   for (int i = 0; i < 9; ++i) x << num(c.rotation(i / 3, i % 3)) << ' ';
   x << "</rotation><translation>" << num(c.translation.x()) << ' ' << num(c.translation.y()) << ' '
     << num(c.translation.z()) << "</translation><scale>" << num(c.scale) << "</scale></transform>\n";
+  if (!c.reference.empty()) x << "  <reference>" << c.reference << "</reference>\n";
   x << " </chunk>\n</document>\n";
   return x.str();
 }
@@ -265,6 +267,30 @@ TEST(Metashape, ProjectsLikeMetashapeFrameFisheyeChunkAndComponent) {
   expect_projects_like(json_round_trip(scene, "metashape_json"), expected, 4);
   EXPECT_EQ(scene.views[1].camera.lens, LensModel::Fisheye);
   EXPECT_NE(scene.views[0].camera.skew, 0.0);
+}
+
+// A georeferenced chunk's world frame is geocentric (its transform maps to
+// ECEF); a local one places nothing on Earth.
+TEST(Metashape, GeoreferencedChunkStatesItsCrs) {
+  const fs::path dir = test::temp_dir("metashape_crs");
+  MsChunk c = ms_chunk();
+  const std::string wgs84 =
+      "GEOGCS[\"WGS 84\",DATUM[\"World Geodetic System 1984\",SPHEROID[\"WGS 84\",6378137,298.257223563,"
+      "AUTHORITY[\"EPSG\",\"7030\"]],AUTHORITY[\"EPSG\",\"6326\"]],PRIMEM[\"Greenwich\",0,"
+      "AUTHORITY[\"EPSG\",\"8901\"]],UNIT[\"degree\",0.01745329251994328,AUTHORITY[\"EPSG\",\"9102\"]],"
+      "AUTHORITY[\"EPSG\",\"4326\"]]";
+  c.reference = wgs84;
+  write(dir / "geo.xml", ms_xml(c));
+  const Scene geo = io::read_metashape((dir / "geo.xml").string());
+  EXPECT_EQ(geo.crs, wgs84);
+  EXPECT_TRUE(geo.crs_geocentric);
+  c.reference = "LOCAL_CS[\"Local Coordinates (m)\",LOCAL_DATUM[\"Local Datum\",0],UNIT[\"metre\",1]]";
+  write(dir / "local.xml", ms_xml(c));
+  const Scene local = io::read_metashape((dir / "local.xml").string());
+  EXPECT_TRUE(local.crs.empty());
+  c.reference.clear();
+  write(dir / "none.xml", ms_xml(c));
+  EXPECT_TRUE(io::read_metashape((dir / "none.xml").string()).crs.empty());
 }
 
 TEST(Metashape, BadInputIsOneLineError) {

@@ -13,8 +13,8 @@ really offers and fails on any difference of name, type, default or range:
 - MeshLab (when built): the parameters the plugin declares, as
   meshnbv_write_filter_scripts writes them (name, Rich type, default);
   ranges are checked in-process by meshlab/FilterOptions.*;
-- VTK (when built): Get/Set<VtkName> of vtkMeshNBVPRIFilter and
-  vtkMeshNBVNextBestViewFilter, their defaults, PrintSelf, and for every
+- VTK (when built): Get/Set<VtkName> of vtkMeshNBVPRIFilter,
+  vtkMeshNBVNextBestViewFilter and vtkMeshNBVMissionWriter, their defaults, PrintSelf, and for every
   number the value just outside its range reported as an error naming it.
 
 Usage: front_ends.py --cli MESHNBV --scene SCENE --work DIR
@@ -121,7 +121,7 @@ def check_cli(cli, tables, work):
     commands = {
         "pri": [("pri", [])],
         "suggest": [("pri", []), ("suggest", [])],
-        "run": [("pri", []), ("suggest", [])],
+        "run": [("pri", []), ("suggest", []), ("mission", [])],
         "loop": [("pri", []), ("suggest", ["candidates"])],
         "mission": [("mission", [])],
     }
@@ -263,10 +263,11 @@ def check_meshlab(tool, tables, work):
 
 
 # ------------------------------------------------------------------------ VTK
-def check_vtk(tables, scene):
+def check_vtk(tables, scene, work):
     from vtkmodules.vtkCommonCore import vtkStringOutputWindow, vtkOutputWindow
 
-    from meshnbv.vtk import vtkMeshNBVNextBestViewFilter, vtkMeshNBVPRIFilter, vtkMeshNBVSceneReader
+    from meshnbv.vtk import (vtkMeshNBVMissionWriter, vtkMeshNBVNextBestViewFilter, vtkMeshNBVPRIFilter,
+                             vtkMeshNBVSceneReader)
 
     # The VTK tests' own error collector.
     sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "filters"))
@@ -285,9 +286,18 @@ def check_vtk(tables, scene):
         fail("VTK: the PRI filter failed on the sample scene: " + window.GetOutput())
         return 0
 
+    # The mission writer: its range errors come when writing.
+    mission = vtkMeshNBVMissionWriter()
+    mission.SetInputConnection(nbv.GetOutputPort(1))
+    mission.SetViewsConnection(reader.GetViewsOutputPort())
+    mission.SetMeshConnection(reader.GetOutputPort(0))
+    mission.SetOutputDirectory(os.path.join(work, "vtk_mission"))
+
     checked = 0
     for table, algorithm, klass in (("pri", pri, vtkMeshNBVPRIFilter),
-                                    ("suggest", nbv, vtkMeshNBVNextBestViewFilter)):
+                                    ("suggest", nbv, vtkMeshNBVNextBestViewFilter),
+                                    ("mission", mission, vtkMeshNBVMissionWriter)):
+        run_it = algorithm.Write if table == "mission" else algorithm.Update
         fresh = klass()
         printed = str(fresh)
         messages = watch_errors(algorithm)
@@ -324,7 +334,7 @@ def check_vtk(tables, scene):
                     continue  # an unsigned property cannot hold it
                 del messages[:]
                 set_(x)
-                algorithm.Update()
+                run_it()
                 expected = f"{o['name']} must be {o['range']}"
                 if not any(expected in m for m in messages):
                     fail(f"{where} = {number_text(x)}: expected an error '{expected}', got {messages}")
@@ -353,7 +363,7 @@ def main():
     if a.meshlab_scripts_tool:
         print(f"MeshLab: {check_meshlab(a.meshlab_scripts_tool, tables, a.work)} parameters checked")
     if a.vtk:
-        print(f"VTK: {check_vtk(tables, a.scene)} properties checked")
+        print(f"VTK: {check_vtk(tables, a.scene, a.work)} properties checked")
     if failures:
         print(f"{len(failures)} difference(s)")
         return 1

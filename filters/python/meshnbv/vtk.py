@@ -6,6 +6,8 @@
 - vtkMeshNBVNextBestViewFilter: mesh with PRI + views (+ candidates) ->
   frustums (port 0) and a suggestions table (port 1).
 - vtkMeshNBVSuggestionWriter: suggestions -> .json or .mlp.
+- vtkMeshNBVMissionWriter: suggestions + views + mesh -> drone mission files
+  (KML, DJI WPML KMZ, Litchi CSV, GeoJSON, CSV; docs/missions.md).
 
 Keep every algorithm of a pipeline in a Python variable: Debian's VTK 9.1
 crashes when an upstream algorithm is a temporary.
@@ -21,11 +23,13 @@ from .vtkMeshNBVFilters import (  # noqa: F401
     vtkMeshNBVPRIFilter,
 )
 from .vtkMeshNBVIO import (  # noqa: F401
+    vtkMeshNBVMissionWriter,
     vtkMeshNBVSceneReader,
     vtkMeshNBVSuggestionWriter,
 )
 
 __all__ = [
+    "vtkMeshNBVMissionWriter",
     "vtkMeshNBVNextBestViewFilter",
     "vtkMeshNBVPRIFilter",
     "vtkMeshNBVSceneReader",

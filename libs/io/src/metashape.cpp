@@ -11,6 +11,7 @@
 //     <cameras> [<group>] <camera id= sensor_id= component_id= label=>
 //       <transform>16 numbers, row-major 4x4, camera to chunk</transform> </camera> </cameras>
 //     <transform><rotation>9</rotation><translation>3</translation><scale>1</scale></transform>
+//     <reference>WKT of the chunk's CRS</reference>
 //   </chunk></document>
 //
 // Metashape's frame camera, on (x, y) = (X/Z, Y/Z) in its camera frame
@@ -192,6 +193,12 @@ std::map<std::string, Mat4> component_transforms(const pugi::xml_node& chunk,
   return out;
 }
 
+std::string trimmed(const std::string& s) {
+  const auto b = s.find_first_not_of(" \t\r\n");
+  if (b == std::string::npos) return {};
+  return s.substr(b, s.find_last_not_of(" \t\r\n") - b + 1);
+}
+
 }  // namespace
 
 Scene read_metashape(const std::string& path, const std::string& image_dir) {
@@ -204,6 +211,15 @@ Scene read_metashape(const std::string& path, const std::string& image_dir) {
   for (pugi::xml_node s : chunk.child("sensors").children("sensor"))
     sensors.nodes[s.attribute("id").value()] = s;
   const Mat4 chunk_to_world = similarity(chunk.child("transform"), path, "chunk transform");
+  // A georeferenced chunk: its transform maps to the geocentric frame of the
+  // <reference> CRS's datum (Metashape's world frame); a local one
+  // (LOCAL_CS, or no transform) places nothing on Earth.
+  const std::string reference = trimmed(chunk.child_value("reference"));
+  if (chunk.child("transform") && !reference.empty() && reference.rfind("LOCAL_CS", 0) != 0 &&
+      reference.rfind("ENGCRS", 0) != 0 && reference.rfind("ENGINEERINGCRS", 0) != 0) {
+    scene.crs = reference;
+    scene.crs_geocentric = true;
+  }
   const auto components = component_transforms(chunk, path);
   std::vector<pugi::xml_node> cameras;
   collect_cameras(chunk.child("cameras"), &cameras);

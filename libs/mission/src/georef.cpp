@@ -2,6 +2,7 @@
 #include "meshnbv/mission/georef.h"
 
 #include <cmath>
+#include <sstream>
 
 #include <Eigen/Geometry>
 #include <Eigen/SVD>
@@ -86,7 +87,135 @@ double similarity_scale(const Mat4& m, const std::string& name) {
   return s;
 }
 
+void check_origin(const Geodetic& o, const std::string& name) {
+  if (!(std::abs(o.latitude) <= 90) || !(std::abs(o.longitude) <= 180) || !std::isfinite(o.height) ||
+      std::abs(o.height) > 1e5)
+    throw Error("the ENU origin must be latitude in [-90, 90], longitude in [-180, 180] and a "
+                "height within 100 km of the ellipsoid", name);
+}
+
+bool is_geocentric(PJ_CONTEXT* ctx, const std::string& crs) {
+  Pj pj(proj_create(ctx, crs.c_str()));
+  return pj && proj_get_type(pj.get()) == PJ_TYPE_GEOCENTRIC_CRS;
+}
+
+// The exact conversion of a geocentric or ENU frame (after the scene's
+// similarity) to WGS84 longitude, latitude, ellipsoidal height.
+class CurvedFrame {
+ public:
+  explicit CurvedFrame(const Georeference& g) : g_(g) {
+    similarity_scale(g.scene_to_crs, "georeference");
+    PJ_CONTEXT* ctx = ctx_.get();
+    proj_log_level(ctx, PJ_LOG_NONE);
+    if (g.crs == "ENU") {
+      if (!g.enu_origin) throw Error("an ENU georeference needs its origin");
+      std::ostringstream p;
+      p.precision(17);
+      p << "+proj=pipeline +step +inv +proj=topocentric +ellps=WGS84 +lat_0=" << g.enu_origin->latitude
+        << " +lon_0=" << g.enu_origin->longitude << " +h_0=" << g.enu_origin->height
+        << " +step +inv +proj=cart +ellps=WGS84 +step +proj=unitconvert +xy_in=rad +xy_out=deg";
+      op_.reset(proj_create(ctx, p.str().c_str()));
+      if (!op_) throw Error("PROJ cannot build the ENU conversion: " + proj_error(ctx));
+    } else {
+      Pj crs(proj_create(ctx, g.crs.c_str()));
+      if (!crs) throw Error("unknown CRS '" + g.crs + "': " + proj_error(ctx));
+      if (proj_get_type(crs.get()) != PJ_TYPE_GEOCENTRIC_CRS)
+        throw Error("not a geocentric CRS: '" + g.crs + "'");
+      Pj wgs84(proj_create(ctx, "EPSG:4979"));
+      if (!wgs84) throw Error("PROJ's database lacks WGS84: " + proj_error(ctx));
+      op_ = transformation(ctx, crs.get(), wgs84.get(), "from the geocentric CRS to WGS84");
+    }
+  }
+  Geodetic to_wgs84(const Vec3& scene) const {
+    const Vec3 c = (g_.scene_to_crs * scene.homogeneous()).head<3>();
+    const Vec3 w = run(op_.get(), PJ_FWD, c, "geocentric or ENU to WGS84");
+    return {w.y(), w.x(), w.z()};
+  }
+
+ private:
+  Georeference g_;
+  Context ctx_{proj_context_create()};
+  Pj op_;
+};
+
+std::string utm_zone_crs(const Geodetic& g);
+
 }  // namespace
+
+bool is_curved_frame(const Georeference& g) {
+  if (g.crs == "ENU") return true;
+  Context ctx(proj_context_create());
+  proj_log_level(ctx.get(), PJ_LOG_NONE);
+  return is_geocentric(ctx.get(), g.crs);
+}
+
+Georeference localize_georef(const Georeference& g, const std::vector<Vec3>& points) {
+  if (!is_curved_frame(g)) return g;
+  if (points.size() < 3) throw Error("georeferencing needs the scene's points (at least 3)");
+  const CurvedFrame exact(g);
+  std::vector<Geodetic> geo;
+  geo.reserve(points.size());
+  Geodetic mean;
+  for (const Vec3& p : points) {
+    geo.push_back(exact.to_wgs84(p));
+    mean.latitude += geo.back().latitude / double(points.size());
+    mean.longitude += geo.back().longitude / double(points.size());
+  }
+  Georeference out;
+  out.crs = utm_zone_crs(mean);
+  const GeoFrame utm(out);  // identity: for the conversions only
+  const auto n = Eigen::Index(points.size());
+  Eigen::Matrix3Xd src(3, n), dst(3, n);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    src.col(i) = points[std::size_t(i)];
+    dst.col(i) = utm.crs_from_wgs84(geo[std::size_t(i)]);
+  }
+  const Vec3 so = src.rowwise().mean(), offset = dst.rowwise().mean();
+  Mat4 t = Eigen::umeyama(src.colwise() - so, dst.colwise() - offset, true);
+  // Back to uncentred scene coordinates: x -> T (x - so) + offset.
+  t.topRightCorner<3, 1>() += offset - t.topLeftCorner<3, 3>() * so;
+  out.scene_to_crs = t;
+  double worst = 0;
+  for (Eigen::Index i = 0; i < n; ++i)
+    worst = std::max(worst, ((t * src.col(i).homogeneous()).head<3>() - dst.col(i)).norm());
+  out.deviation_m = worst;
+  std::ostringstream why;
+  why.precision(3);
+  why << g.source << ", expressed in " << out.crs << " (largest deviation " << worst << " m over "
+      << points.size() << " scene points)";
+  out.source = why.str();
+  if (!(worst <= kMaxDeviation))
+    throw Error(why.str() + ": the scene spans too much of the Earth's curvature for one similarity "
+                "(more than " + std::to_string(int(kMaxDeviation)) + " m); give --georef in a projected CRS");
+  return out;
+}
+
+std::optional<Georeference> scene_crs_georef(const Scene& scene) {
+  if (scene.crs.empty()) return std::nullopt;
+  Context ctx(proj_context_create());
+  PJ_CONTEXT* c = ctx.get();
+  proj_log_level(c, PJ_LOG_NONE);
+  Pj crs(proj_create(c, scene.crs.c_str()));
+  if (!crs) throw Error("the scene's CRS is not one PROJ reads: " + proj_error(c), scene.source);
+  Georeference g;
+  g.source = "the scene's own CRS (" + std::string(proj_get_name(crs.get()) ? proj_get_name(crs.get()) : "?") + ")";
+  if (!scene.crs_geocentric) {
+    g.crs = scene.crs;
+    return g;
+  }
+  // The geocentric CRS of the CRS's datum (or datum ensemble).
+  Pj geodetic(proj_crs_get_geodetic_crs(c, crs.get()));
+  if (!geodetic) throw Error("the scene's CRS has no geodetic datum: " + proj_error(c), scene.source);
+  Pj datum(proj_crs_get_datum_forced(c, geodetic.get()));
+  if (!datum) throw Error("the scene's CRS has no geodetic datum: " + proj_error(c), scene.source);
+  Pj geocentric(proj_create_geocentric_crs_from_datum(c, "geocentric", datum.get(), "metre", 1.0));
+  if (!geocentric) throw Error("no geocentric CRS for the scene's datum: " + proj_error(c), scene.source);
+  const char* wkt = proj_as_wkt(c, geocentric.get(), PJ_WKT2_2019, nullptr);
+  if (!wkt) throw Error("no geocentric CRS for the scene's datum: " + proj_error(c), scene.source);
+  g.crs = wkt;
+  g.source += ", geocentric";
+  return g;
+}
 
 double Georeference::rms_residual() const {
   double s = 0;
@@ -114,8 +243,47 @@ Georeference parse_georef_json(const std::string& text, const std::string& name)
   }
   similarity_scale(g.scene_to_crs, name);
   g.source = "georeference file " + name;
-  GeoFrame check(g);  // a CRS PROJ does not know fails here, naming it
+  if (g.crs == "ENU") {
+    const auto& o = j.contains("origin") ? j["origin"] : nlohmann::json();
+    if (!o.is_array() || o.size() != 3 || !o[0].is_number() || !o[1].is_number() || !o[2].is_number())
+      throw Error("an \"ENU\" georeference needs \"origin\": [latitude, longitude, ellipsoidal height]", name);
+    g.enu_origin = Geodetic{o[0].get<double>(), o[1].get<double>(), o[2].get<double>()};
+    check_origin(*g.enu_origin, name);
+  }
+  try {
+    if (is_curved_frame(g))
+      CurvedFrame check(g);
+    else
+      GeoFrame check(g);  // a CRS PROJ does not know fails here, naming it
+  } catch (const Error& e) {
+    throw Error(e.what(), name);
+  }
   return g;
+}
+
+Georeference parse_georef_argument(const std::string& a) {
+  if (a == "ecef") {
+    Georeference g;
+    g.crs = "EPSG:4978";
+    g.source = "--georef ecef (scene coordinates WGS84 geocentric, EPSG:4978)";
+    return g;
+  }
+  if (a.rfind("enu:", 0) == 0) {
+    std::vector<double> v;
+    std::stringstream ss(a.substr(4));
+    std::string item;
+    while (std::getline(ss, item, ',')) v.push_back(io::parse_double(item, "--georef", -1, "coordinate"));
+    if (v.size() != 3)
+      throw Error("--georef enu: takes LAT,LON,H (the tangent frame's origin, WGS84 degrees and "
+                  "ellipsoidal metres), got '" + a + "'");
+    Georeference g;
+    g.crs = "ENU";
+    g.enu_origin = Geodetic{v[0], v[1], v[2]};
+    check_origin(*g.enu_origin, "--georef");
+    g.source = "--georef " + a + " (scene coordinates east, north, up from that origin)";
+    return g;
+  }
+  return read_georef_file(a);
 }
 
 Georeference read_georef_file(const std::string& path) {

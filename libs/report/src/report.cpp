@@ -219,6 +219,35 @@ void write_suggestions_section(std::ostream& h, const std::string& folder, const
   h << "</div>\n";
 }
 
+void write_mission_section(std::ostream& h, const ReportMission& m) {
+  h << "<h2>Flying the suggested views</h2>\n";
+  if (!m.unavailable.empty()) {
+    h << "<p>No drone mission: " << html_escape(m.unavailable) << ".</p>\n";
+    return;
+  }
+  double minutes = 0;
+  int photos = 0;
+  for (const ReportFlight& f : m.flights) minutes += f.minutes, photos += f.photos;
+  h << "<p>Georeference: " << html_escape(m.georef) << ". Take-off at " << html_escape(m.takeoff) << ". "
+    << photos << " photos in " << m.flights.size() << " flight(s), " << fixed(minutes, 1)
+    << " min in all; files (KML, DJI WPML KMZ, Litchi CSV, GeoJSON, CSV) in <a href=\""
+    << html_escape(m.folder) << "/\">" << html_escape(m.folder) << "/</a>.</p>\n";
+  h << "<figure>" << m.svg << "<figcaption>The flights from above (north up) over the mesh, keep-out "
+       "volumes in red, take-off point in black</figcaption></figure>\n";
+  h << "<table><tr><th>flight</th><th>photos</th><th>length (m)</th><th>minutes</th><th>detours</th></tr>";
+  for (std::size_t k = 0; k < m.flights.size(); ++k) {
+    const ReportFlight& f = m.flights[k];
+    h << "<tr><td>" << k + 1 << "</td><td>" << f.photos << "</td><td>" << fixed(f.length_m, 1) << "</td><td>"
+      << fixed(f.minutes, 1) << "</td><td>" << f.detours << "</td></tr>";
+  }
+  h << "</table>\n";
+  if (!m.notes.empty()) {
+    h << "<ul>";
+    for (const std::string& n : m.notes) h << "<li>" << html_escape(n) << "</li>";
+    h << "</ul>\n";
+  }
+}
+
 // Every option of the two tables, under its one name (options.h).
 template <class Options>
 void write_option_rows(std::ostream& h, const char* what, const Options& options,
@@ -290,6 +319,7 @@ ReportFiles write_report(const ReportInputs& in, const std::string& folder,
   write_head(h, in);
   write_pri_section(h, folder, summary, {lo, hi}, in.pri_options.measure, pri_evidence(*in.pri));
   write_suggestions_section(h, folder, sug, n_views);
+  if (in.mission) write_mission_section(h, *in.mission);
   write_inputs_section(h, in);
   h << "</body></html>\n";
   out.html = (fs::path(folder) / "report.html").string();

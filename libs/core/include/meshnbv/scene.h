@@ -69,6 +69,12 @@ struct Scene {
   // "COLMAP (binary model)", "Agisoft Metashape (cameras XML)"; may be empty.
   std::string producer;
   std::vector<SparsePoint> sparse_points;  // when the file holds them
+  // Where the source places the scene on Earth, else empty: the scene's
+  // coordinates are in `crs` (anything PROJ reads: EPSG code, WKT), or, with
+  // `crs_geocentric`, in the geocentric (ECEF) frame of that CRS's datum
+  // (a georeferenced Metashape chunk's world frame).
+  std::string crs;
+  bool crs_geocentric = false;
   std::shared_ptr<ImageCache> images = std::make_shared<ImageCache>();
 
   // The image of view i: its in-memory pixels, else its file decoded via the

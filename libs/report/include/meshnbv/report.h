@@ -11,6 +11,23 @@
 
 namespace meshnbv {
 
+// The drone mission of the suggestions (meshnbv::mission, planned by the
+// caller): its top view and flights, or why there is none.
+struct ReportFlight {
+  int photos = 0;
+  double length_m = 0, minutes = 0;
+  int detours = 0;
+};
+struct ReportMission {
+  std::string unavailable;   // why no mission was planned (shown); empty when planned
+  std::string georef;        // the georeference's source
+  std::string svg;           // the flights from above (mission.svg), inlined
+  std::string takeoff;       // text, e.g. "46.5000000 N, 7.2500000 E"
+  std::vector<ReportFlight> flights;
+  std::vector<std::string> notes;  // moved, dropped, detour, with the reason
+  std::string folder;        // where the mission files are, relative to the report
+};
+
 struct ReportInputs {
   const Scene* scene = nullptr;
   const PriResult* pri = nullptr;
@@ -22,6 +39,7 @@ struct ReportInputs {
   std::vector<std::pair<std::string, std::string>> files;   // file name, what it is
   int image_width = 960, image_height = 720;                // overview pictures
   int suggestion_views = 3;                                 // pictures from the top suggestions
+  const ReportMission* mission = nullptr;                   // optional section
 };
 
 struct ReportFiles {

@@ -11,10 +11,20 @@
 //  - the photos' EXIF GPS: a similarity fitted by Umeyama (least squares,
 //    scale included) from the camera centres to the GPS positions expressed
 //    in the local east-north-up frame of the UTM zone of their centroid,
-//    with per-photo residuals.
+//    with per-photo residuals;
+//  - a scene whose coordinates are geocentric (ECEF: a COLMAP model aligned
+//    with `model_aligner --alignment_type ecef`, a georeferenced Metashape
+//    chunk's world frame) or a local east-north-up tangent frame (COLMAP's
+//    `--alignment_type enu`): `--georef ecef`, `--georef enu:LAT,LON,H`, a
+//    file whose "crs" is geocentric or "ENU" (with "origin"), or the
+//    scene's own CRS (Scene::crs). Such a frame is curved against any map
+//    projection; localize_georef expresses it as the similarity to the UTM
+//    zone of the scene that fits it best over the scene's points, and
+//    states the largest deviation.
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -38,9 +48,17 @@ struct GpsFix {
 };
 
 struct Georeference {
-  std::string crs;                      // anything PROJ reads: "EPSG:32632", WKT, PROJJSON
+  // Anything PROJ reads: "EPSG:32632", WKT, PROJJSON; a projected or
+  // compound CRS for GeoFrame. Before localize_georef also a geocentric CRS
+  // ("EPSG:4978") or "ENU" (a tangent frame at enu_origin).
+  std::string crs;
   Mat4 scene_to_crs = Mat4::Identity();
+  std::optional<Geodetic> enu_origin;   // crs == "ENU"
   std::string source;                   // where it came from, for reports
+  // localize_georef of a geocentric or ENU frame: the largest distance
+  // (metres), over the scene's points, between the fitted similarity and
+  // the exact conversion; 0 otherwise.
+  double deviation_m = 0;
   // EXIF fits: the photos used and the distance (metres) between each GPS
   // position and the fitted camera centre.
   std::vector<std::string> fit_labels;
@@ -53,7 +71,25 @@ struct Georeference {
 // similarity (GeoFrame), or a CRS PROJ does not know.
 Georeference parse_georef_json(const std::string& text, const std::string& name);
 Georeference read_georef_file(const std::string& path);
+// The argument of --georef: "ecef" (scene coordinates are WGS84 geocentric,
+// EPSG:4978), "enu:LAT,LON,H" (a tangent frame with its origin at that
+// WGS84 position, x east, y north, z up) or a file.
+Georeference parse_georef_argument(const std::string& argument);
 std::string georef_json(const Georeference& georef);
+
+// Whether the georeference needs localize_georef (geocentric or ENU).
+bool is_curved_frame(const Georeference& georef);
+// A geocentric or ENU georeference as the similarity to the UTM zone of
+// the points' centre, fitted (Umeyama) to the exact PROJ conversion of
+// `scene_points` (a sample of the mesh and the camera centres); others
+// are returned as they are. Error when the points are fewer than 3 or
+// degenerate, or the deviation exceeds kMaxDeviation (a scene spanning
+// too much of the Earth's curvature for one similarity).
+constexpr double kMaxDeviation = 1.0;  // metres
+Georeference localize_georef(const Georeference& georef, const std::vector<Vec3>& scene_points);
+// The georeference a scene's source states (Scene::crs): geocentric of the
+// CRS's datum when Scene::crs_geocentric, else that CRS; none when empty.
+std::optional<Georeference> scene_crs_georef(const Scene& scene);
 
 // The EXIF GPS of every view with an image file (views without GPS are
 // skipped; unreadable EXIF is an Error).
