@@ -363,6 +363,15 @@ TEST(ExifReader, AbsentAndMalformedTags) {
   std::ofstream(dir + "/junk.jpg") << "not an image";
   EXPECT_THROW(io::read_exif(dir + "/junk.jpg"), Error);
   EXPECT_THROW(io::read_exif(dir + "/missing.jpg"), Error);
+  // A format with no EXIF (PGM) is no GPS where a scene's photos are
+  // searched for it, an error where EXIF is asked for; missing is an error.
+  cv::imwrite(dir + "/grey.pgm", cv::Mat(8, 8, CV_8UC1, cv::Scalar(7)));
+  EXPECT_FALSE(io::read_exif_if_known_type(dir + "/grey.pgm").has_value());
+  EXPECT_THROW(io::read_exif(dir + "/grey.pgm"), Error);
+  EXPECT_THROW(io::read_exif_if_known_type(dir + "/missing.jpg"), Error);
+  const auto jpeg = io::read_exif_if_known_type(dir + "/none.jpg");
+  ASSERT_TRUE(jpeg.has_value());
+  EXPECT_FALSE(jpeg->has_gps());
 }
 
 }  // namespace

@@ -2,6 +2,7 @@
 #include "meshnbv/io/exif.h"
 
 #include <cmath>
+#include <filesystem>
 #include <mutex>
 
 #include <exiv2/exiv2.hpp>
@@ -77,9 +78,37 @@ ExifInfo from_image(Exiv2::Image& image, const std::string& file) {
 
 }  // namespace
 
+namespace {
+
+ExifInfo read_exif_file(const std::string& path, bool unknown_ok, bool* unknown) {
+  mute_exiv2_log();
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) throw Error("cannot open the file", path);
+  try {
+    if (unknown_ok && Exiv2::ImageFactory::getType(path) == Exiv2::ImageType::none) {
+      *unknown = true;
+      return {};
+    }
+    auto image = Exiv2::ImageFactory::open(path);
+    if (!image.get()) throw Error("not an image with EXIF that exiv2 reads", path);
+    return from_image(*image, path);
+  } catch (const Exiv2::AnyError& e) {
+    throw Error(std::string("cannot read EXIF: ") + e.what(), path);
+  }
+}
+
+}  // namespace
+
 ExifInfo read_exif(const std::string& path) {
-  const std::string bytes = read_file(path);  // a one-line Error when missing
-  return read_exif_from_memory(bytes, path);
+  bool unknown = false;
+  return read_exif_file(path, false, &unknown);
+}
+
+std::optional<ExifInfo> read_exif_if_known_type(const std::string& path) {
+  bool unknown = false;
+  ExifInfo e = read_exif_file(path, true, &unknown);
+  if (unknown) return std::nullopt;
+  return e;
 }
 
 ExifInfo read_exif_from_memory(const std::string& bytes, const std::string& name) {

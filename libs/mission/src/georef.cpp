@@ -310,9 +310,9 @@ std::vector<GpsFix> gps_fixes(const Scene& scene) {
   std::vector<GpsFix> fixes;
   for (const View& v : scene.views) {
     if (v.image_path.empty()) continue;
-    const io::ExifInfo e = io::read_exif(v.image_path);
-    if (!e.has_gps()) continue;
-    fixes.push_back({v.label, v.camera.center(), {*e.latitude, *e.longitude, e.altitude.value_or(0.0)}});
+    const std::optional<io::ExifInfo> e = io::read_exif_if_known_type(v.image_path);
+    if (!e || !e->has_gps()) continue;
+    fixes.push_back({v.label, v.camera.center(), {*e->latitude, *e->longitude, e->altitude.value_or(0.0)}});
   }
   return fixes;
 }

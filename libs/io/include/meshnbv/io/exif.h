@@ -19,8 +19,12 @@ struct ExifInfo {
   bool has_gps() const { return latitude && longitude; }
 };
 
-// Throws Error when the file is missing or not an image exiv2 reads.
+// Throws Error when the file is missing or not an image exiv2 reads. Only
+// the metadata is read (exiv2 opens the file itself), not the pixels.
 ExifInfo read_exif(const std::string& path);
+// The same, but nullopt for a file of a type exiv2 does not know (PGM, PPM,
+// ...: no EXIF to hold); still an Error for a missing file or bad tags.
+std::optional<ExifInfo> read_exif_if_known_type(const std::string& path);
 // The same from the bytes of a file (`name` for messages); for the fuzzer.
 ExifInfo read_exif_from_memory(const std::string& bytes, const std::string& name);
 

@@ -91,8 +91,9 @@ Georeference localize_georef(const Georeference& georef, const std::vector<Vec3>
 // CRS's datum when Scene::crs_geocentric, else that CRS; none when empty.
 std::optional<Georeference> scene_crs_georef(const Scene& scene);
 
-// The EXIF GPS of every view with an image file (views without GPS are
-// skipped; unreadable EXIF is an Error).
+// The EXIF GPS of every view with an image file (views without GPS, and
+// files of a type that holds no EXIF, such as PGM, are skipped; a missing
+// file or malformed tags are an Error).
 std::vector<GpsFix> gps_fixes(const Scene& scene);
 // Fewer than 3 fixes, or fixes that do not span a plane (collinear or
 // coincident, in the scene or on the ground) are an Error.
