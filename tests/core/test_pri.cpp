@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <iostream>
 #include <numeric>
+#include <random>
 
 #include "meshnbv/error.h"
 #include "meshnbv/pri.h"
@@ -82,6 +83,65 @@ TEST(PriMeasures, SsdAndNccByHand) {
   // Constant patch: textureless.
   const float flat[4] = {0.5f, 0.5f, 0.5f, 0.5f};
   EXPECT_LT(ncc_error(a, flat, 4, 1e-6), 0);
+}
+
+// The O(m n) sums of pair_error_sum against the pairwise loop of the SPEC's
+// ssd_error / ncc_error: random patches of 0..1 and 0..255 intensities
+// (small differences on a large level: where cancellation would show),
+// textureless ones mixed in, 2 to 60 views, 3 to 300 samples.
+TEST(PriMeasures, PairSumsEqualThePairwiseLoop) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(0, 1);
+  std::vector<double> scratch;
+  const double min_variance = 1e-4;
+  for (int trial = 0; trial < 300; ++trial) {
+    const std::size_t m = 2 + rng() % 59, n = 3 + rng() % 298;
+    const double level = trial % 2 ? 255.0 : 1.0, spread = level * (trial % 3 ? 0.05 : 1e-3);
+    std::vector<std::vector<float>> data(m, std::vector<float>(n));
+    std::vector<float> base(n);
+    for (float& b : base) b = float(level * (0.5 + 0.3 * u(rng)));
+    for (std::size_t a = 0; a < m; ++a)
+      for (std::size_t k = 0; k < n; ++k)
+        data[a][k] = (trial % 5 == 0 && a % 3 == 0) ? float(0.5 * level)  // textureless
+                                                     : float(base[k] + spread * (u(rng) - 0.5));
+    std::vector<const float*> patches;
+    for (const auto& d : data) patches.push_back(d.data());
+    for (const Measure measure : {Measure::SSD, Measure::NCC}) {
+      double loop = 0;
+      std::size_t loop_pairs = 0;
+      for (std::size_t a = 0; a < m; ++a)
+        for (std::size_t b = a + 1; b < m; ++b) {
+          const double e = measure == Measure::SSD ? ssd_error(patches[a], patches[b], n)
+                                                   : ncc_error(patches[a], patches[b], n, min_variance * level * level);
+          if (e < 0) continue;  // textureless pair
+          loop += e;
+          ++loop_pairs;
+        }
+      std::size_t pairs = 0;
+      const double sum = pair_error_sum(patches, n, measure, min_variance * level * level, &pairs, &scratch);
+      ASSERT_EQ(pairs, loop_pairs) << trial;
+      EXPECT_NEAR(sum, loop, 1e-9 * std::max(loop, 1e-12 * double(std::max<std::size_t>(pairs, 1))))
+          << "trial " << trial << (measure == Measure::SSD ? " ssd" : " ncc") << " m " << m << " n " << n;
+    }
+  }
+}
+
+TEST(PriMeasures, PairSumsOfTooFewViews) {
+  std::vector<double> scratch;
+  std::size_t pairs = 7;
+  const std::vector<float> a = {0.1f, 0.5f, 0.9f}, flat = {0.5f, 0.5f, 0.5f};
+  EXPECT_EQ(pair_error_sum({a.data()}, 3, Measure::SSD, 1e-4, &pairs, &scratch), 0.0);
+  EXPECT_EQ(pairs, 0u);
+  // NCC: one textured view among textureless ones compares with nothing.
+  EXPECT_EQ(pair_error_sum({a.data(), flat.data(), flat.data()}, 3, Measure::NCC, 1e-4, &pairs, &scratch), 0.0);
+  EXPECT_EQ(pairs, 0u);
+  // Two identical textured views: error 0 over one pair; opposite ones: 1.
+  const std::vector<float> b = {0.9f, 0.5f, 0.1f};
+  EXPECT_NEAR(pair_error_sum({a.data(), a.data(), flat.data()}, 3, Measure::NCC, 1e-4, &pairs, &scratch), 0.0, 1e-12);
+  EXPECT_EQ(pairs, 1u);
+  EXPECT_NEAR(pair_error_sum({a.data(), b.data()}, 3, Measure::NCC, 1e-4, &pairs, &scratch), 1.0, 1e-12);
+  EXPECT_NEAR(pair_error_sum({a.data(), b.data()}, 3, Measure::SSD, 1e-4, &pairs, &scratch),
+              ssd_error(a.data(), b.data(), 3), 1e-12);
 }
 
 TEST(Pri, TruthIsConsistentAndAShiftedMeshIsNot) {

@@ -188,6 +188,48 @@ double ncc_error(const float* a, const float* b, std::size_t n, double min_varia
   return ncc_from_stats(a, sa, b, sb, n);
 }
 
+double pair_error_sum(const std::vector<const float*>& patches, std::size_t n, Measure measure,
+                      double min_variance, std::size_t* pairs, std::vector<double>* scratch) {
+  const std::size_t m = patches.size();
+  std::vector<double>& acc = *scratch;
+  acc.assign(n, 0.0);
+  *pairs = 0;
+  if (n == 0 || m < 2) return 0.0;
+  if (measure == Measure::SSD) {
+    // m sum_a |x_a - mu|^2 / n, centred on the mean patch (no cancellation).
+    for (const float* p : patches)
+      for (std::size_t k = 0; k < n; ++k) acc[k] += p[k];
+    for (std::size_t k = 0; k < n; ++k) acc[k] /= double(m);
+    double ss = 0;
+    for (const float* p : patches)
+      for (std::size_t k = 0; k < n; ++k) {
+        const double d = double(p[k]) - acc[k];
+        ss += d * d;
+      }
+    *pairs = m * (m - 1) / 2;
+    return double(m) * ss / double(n);
+  }
+  // NCC: (1 - rho) / 2 summed over the textured pairs.
+  std::size_t textured = 0;
+  double norms = 0;  // sum_a |z_a|^2 (1 up to rounding)
+  for (const float* p : patches) {
+    const PatchStats st = patch_stats(p, n, min_variance);
+    if (st.textureless) continue;
+    ++textured;
+    for (std::size_t k = 0; k < n; ++k) {
+      const double z = (double(p[k]) - st.mean) * st.inv_norm;
+      acc[k] += z;
+      norms += z * z;
+    }
+  }
+  if (textured < 2) return 0.0;
+  double total = 0;
+  for (std::size_t k = 0; k < n; ++k) total += acc[k] * acc[k];
+  *pairs = textured * (textured - 1) / 2;
+  const double rho_sum = (total - norms) / 2.0;
+  return (double(*pairs) - rho_sum) / 2.0;
+}
+
 PriViewSelection select_pri_views(const Scene& scene, const PriOptions& options,
                                   const ProgressCallback& progress) {
   options.check();
@@ -410,26 +452,12 @@ struct PairErrors {
   double best_cost = 0;   // offset: the least cost
 };
 
-// The error of every pair of a face's patches (n floats each); `stats` is
-// scratch space.
+// The error of every pair of a face's patches (n floats each), in O(m n)
+// (pair_error_sum).
 PairErrors pair_errors(const std::vector<const float*>& patches, std::size_t n, const PriOptions& o,
-                       std::vector<PatchStats>* stats) {
+                       std::vector<double>* scratch) {
   PairErrors e;
-  if (o.measure == Measure::SSD) {
-    for (std::size_t a = 0; a < patches.size(); ++a)
-      for (std::size_t b = a + 1; b < patches.size(); ++b, ++e.pairs)
-        e.sum += ssd_error(patches[a], patches[b], n);
-    return e;
-  }
-  std::vector<PatchStats>& st = *stats;
-  st.clear();
-  for (const float* p : patches) st.push_back(patch_stats(p, n, o.textureless_variance));
-  for (std::size_t a = 0; a < patches.size(); ++a)
-    for (std::size_t b = a + 1; b < patches.size(); ++b) {
-      if (st[a].textureless || st[b].textureless) continue;
-      e.sum += ncc_from_stats(patches[a], st[a], patches[b], st[b], n);
-      ++e.pairs;
-    }
+  e.sum = pair_error_sum(patches, n, o.measure, o.textureless_variance, &e.pairs, scratch);
   return e;
 }
 
@@ -501,7 +529,7 @@ void score_block(const PriInputs& in, const SampleBlock& block, PriResult* resul
   const int hyps = hypotheses(in.options);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(block.begin, block.end), [&](const auto& r) {
     std::vector<const float*> patches;
-    std::vector<PatchStats> stats;
+    std::vector<double> scratch;
     std::vector<double> costs;
     for (std::size_t f = r.begin(); f < r.end(); ++f) {
       const std::size_t n = lattice_floats(in, fv[f]);
@@ -520,7 +548,7 @@ void score_block(const PriInputs& in, const SampleBlock& block, PriResult* resul
       result->pri_texture[f] = texture_of(patches, std::size_t(hyps / 2) * n, n);
       const bool offset = in.options.measure == Measure::Offset;
       const PairErrors e = offset ? offset_errors(patches, ref, n, in.hypotheses_px, in.options, &costs)
-                                  : pair_errors(patches, n, in.options, &stats);
+                                  : pair_errors(patches, n, in.options, &scratch);
       result->pri_pairs[f] = int(e.pairs);
       if (e.pairs == 0) {
         result->status[f] = FaceStatus::Textureless;

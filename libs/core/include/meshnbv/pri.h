@@ -118,6 +118,18 @@ PriResult compute_pri(const Scene& scene, const PriOptions& options = {},
 double ssd_error(const float* a, const float* b, std::size_t n);
 double ncc_error(const float* a, const float* b, std::size_t n, double min_variance);
 
+// The sum over every pair of `patches` (n floats each) of ssd_error, or of
+// ncc_error over the pairs where neither patch is textureless, in O(m n)
+// for m patches instead of O(m^2 n) (double accumulation):
+//   SSD: sum_{a<b} |x_a - x_b|^2 = m sum_a |x_a - mu|^2, mu the mean patch;
+//   NCC: sum_{a<b} rho_ab = (|sum_a z_a|^2 - sum_a |z_a|^2) / 2, z_a the
+//        zero-mean, unit-norm patches of the textured views.
+// Sets *pairs to the pairs counted. Agrees with the pairwise loop to 1e-9
+// relative (tests/core/test_pri.cpp; NCC's per-pair clamp of rho to
+// [-1, 1] only removes rounding). `scratch` is reused between calls.
+double pair_error_sum(const std::vector<const float*>& patches, std::size_t n, Measure measure,
+                      double min_variance, std::size_t* pairs, std::vector<double>* scratch);
+
 // Colours for a PRI map: hue from green (low PRI) to red (high PRI) over
 // [lo, hi]; grey where the PRI is NaN.
 std::vector<Rgb8> pri_colors(const std::vector<float>& pri, double lo, double hi);
