@@ -173,7 +173,7 @@ int vtkMeshNBVPRIFilter::RequestData(
 
     const meshnbv::PriOptions options = OptionsOf(this);
     const meshnbv::PriResult result = meshnbv::compute_pri(scene, options,
-      vtkMeshNBV::MakeProgressCallback(this, { { "visibility", 0.2 }, { "pri", 0.8 } }));
+      vtkMeshNBV::MakeProgressCallback(this, { { "visibility", 0.15 }, { "view selection", 0.1 }, { "pri", 0.75 } }));
 
     output->ShallowCopy(input);
     AddCellArray<vtkFloatArray>(output, this->PRIArrayName, result.pri);

@@ -1,5 +1,5 @@
 // Private to the MeshNBV VTK module: the core's one progress/cancel callback
-// mapped to a VTK algorithm. Each core stage ("visibility", "pri",
+// mapped to a VTK algorithm. Each core stage ("visibility", "view selection", "pri",
 // "suggest") gets a share of the algorithm's progress; the callback reports
 // through UpdateProgress (on the thread that runs RequestData only: VTK
 // observers, Python ones included, are not thread-safe) and asks the core

@@ -20,7 +20,7 @@ for l in lines:
     assert set(d) == {"stage", "fraction", "elapsed", "eta"}, d
     assert 0 <= d["fraction"] <= 1
     stages.add(d["stage"])
-assert {"visibility", "pri", "suggest", "report"} <= stages, stages
+assert {"visibility", "view selection", "pri", "suggest", "report"} <= stages, stages
 PY
 expect_error "--overwrite" "$MESHNBV" run "$TMP/p/project.mlp" --out "$TMP/r" --quiet
 finish

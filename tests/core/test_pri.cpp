@@ -393,6 +393,24 @@ TEST(Pri, SamplesPerSideOption) {
 TEST(Pri, CancelStops) {
   PlaneScene s = make_scene("cancel", plane(), kEyes);
   EXPECT_THROW(compute_pri(s.scene, {}, [](double, const std::string&) { return false; }), Cancelled);
+  // Every stage reports and can stop: visibility, the per-face view
+  // selection, the sampling and comparison.
+  std::vector<std::string> stages;
+  (void)compute_pri(s.scene, {}, [&](double, const std::string& stage) {
+    if (stages.empty() || stages.back() != stage) stages.push_back(stage);
+    return true;
+  });
+  EXPECT_EQ(stages, (std::vector<std::string>{"visibility", "view selection", "pri"}));
+  for (const std::string& stop : {"view selection", "pri"}) {
+    std::vector<std::string> seen;
+    EXPECT_THROW(compute_pri(s.scene, {}, [&](double, const std::string& stage) {
+                   seen.push_back(stage);
+                   return stage != stop;
+                 }),
+                 Cancelled)
+        << stop;
+    EXPECT_EQ(seen.back(), stop);
+  }
 }
 
 TEST(Pri, ColoursAndSummary) {

@@ -257,10 +257,16 @@ PriViewSelection select_pri_views(const Scene& scene, const PriOptions& options,
     const VertexVisibility vis(mesh, caster, s.cameras, options.visibility, progress);
     const std::vector<Vec3> normals = mesh.face_normals();
     const double abs_eps = options.visibility.absolute_eps_of_diagonal * mesh.bounding_box().diagonal();
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, F), [&](const auto& r) {
-      for (std::size_t f = r.begin(); f < r.end(); ++f)
-        s.faces[f] = select_views(mesh, normals, vis, caster, s.cameras, centres, f, options, abs_eps);
-    });
+    // Chunks of faces in parallel; progress and cancellation between chunks.
+    constexpr std::size_t kChunk = 16384;
+    for (std::size_t begin = 0; begin < F; begin += kChunk) {
+      const std::size_t end = std::min(F, begin + kChunk);
+      tbb::parallel_for(tbb::blocked_range<std::size_t>(begin, end), [&](const auto& r) {
+        for (std::size_t f = r.begin(); f < r.end(); ++f)
+          s.faces[f] = select_views(mesh, normals, vis, caster, s.cameras, centres, f, options, abs_eps);
+      });
+      report_progress(progress, double(end) / double(F), "view selection");
+    }
   });
   return s;
 }
