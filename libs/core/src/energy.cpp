@@ -137,6 +137,7 @@ EnergyTerms EnergyEvaluator::evaluate(const PinholeCamera& P) const {
   EnergyTerms e;
   const Vec3 c = P.center();
   const double kappa = options_.kappa(), mu = options_.incidence_mu * kDeg;
+  const double cos_mu = std::cos(mu), sin_mu = std::sin(mu);
   const auto& w = options_.weights;
   for (std::size_t k = 0; k < region_.vertices.size(); ++k) {
     const Vec3& v = mesh_.vertices[std::size_t(region_.vertices[k])];
@@ -145,11 +146,14 @@ EnergyTerms EnergyEvaluator::evaluate(const PinholeCamera& P) const {
     double par = 0;
     for (const Vec3& other : existing_) par += parallax_term(c, other, v, options_);
     e.parallax += w[2] * par;
+    // The von Mises log density of the incidence angle theta in closed form,
+    // from cos theta (no acos): -2 kappa sin^2((theta - mu) / 2) =
+    // kappa (cos theta cos mu + sin theta sin mu - 1), sin theta >= 0 on [0, pi].
     const Vec3 ray = c - v;
     const double len = ray.norm();
-    const double angle =
-        len > 0 ? std::acos(std::clamp(region_.normals[k].dot(ray / len), -1.0, 1.0)) : M_PI;
-    e.incidence += w[3] * von_mises_log_density(angle - mu, kappa, incidence_log_norm_scaled_);
+    const double cos_t = len > 0 ? std::clamp(region_.normals[k].dot(ray) / len, -1.0, 1.0) : -1.0;
+    const double sin_t = std::sqrt(std::max(0.0, 1.0 - cos_t * cos_t));
+    e.incidence += w[3] * (kappa * (cos_t * cos_mu + sin_t * sin_mu - 1.0) - incidence_log_norm_scaled_);
   }
   e.total = e.occlusion + e.focus + e.parallax + e.incidence;
   return e;
