@@ -1,5 +1,5 @@
 # Extreme option values (issue #20): every numeric flag of pri, suggest,
-# run, loop, synth and evaluate -- found in their --help (INT, UINT, FLOAT, REAL,
+# run, loop, synth, evaluate and mission -- found in their --help (INT, UINT, FLOAT, REAL,
 # BOOLEAN), so flags added later are covered -- and the number-list flags,
 # with negative, zero, tiny, huge, beyond-int, NaN and infinite values. Each
 # run must end with exit code 0, or exit code 1 and one line
@@ -69,13 +69,17 @@ vary() {
   done
 }
 
-# each_value command-name command...: every numeric flag x every value.
+# each_value command-name command...: every numeric flag x every value
+# (but those in $EXCEPT, space-separated).
 each_value() {
   local name=$1; shift
   local flags flag
   flags=$(numeric_flags "$name")
   [ -n "$flags" ] || fail "no numeric flag found in '$name --help'"
-  for flag in $flags; do vary "$name" "$flag" "$@"; done
+  for flag in $flags; do
+    case " ${EXCEPT:-} " in *" $flag "*) continue;; esac
+    vary "$name" "$flag" "$@"
+  done
 }
 
 # A PRI file for suggest (so that its runs do not all compute the PRI).
@@ -93,8 +97,14 @@ for flag in --refine-best --refine-iterations --top; do
   vary "suggest refined" "$flag" "$MESHNBV" suggest "$S" --pri "$TMP/pri.ply" --candidates refined \
     --refine-best 2 --refine-iterations 20 --out "$TMP/s.json" --overwrite --quiet
 done
-# run: PRI, suggestions and the report.
-each_value run "$MESHNBV" run "$SMALL" --out "$TMP/run" --overwrite --quiet
+# run: PRI, suggestions and the report; its mission flags are mission's
+# (below), where a mission is planned.
+EXCEPT=$(numeric_flags mission | tr '\n' ' ') each_value run "$MESHNBV" run "$SMALL" --out "$TMP/run" --overwrite --quiet
+# mission: two suggestions placed by a georeference file.
+"$MESHNBV" suggest "$S" --pri "$TMP/pri.ply" --top 2 --out "$TMP/s2.json" --quiet >/dev/null || fail "suggest for mission"
+echo '{"crs": "EPSG:32632", "transform": [1,0,0,500000, 0,1,0,5000000, 0,0,1,100, 0,0,0,1]}' > "$TMP/georef.json"
+each_value mission "$MESHNBV" mission "$S" --suggestions "$TMP/s2.json" --georef "$TMP/georef.json" \
+  --out "$TMP/mission" --overwrite
 # loop: every check comes before COLMAP is run; the dataset does not exist,
 # so a run whose options pass ends at "scene not found" (or "COLMAP not found").
 each_value loop "$MESHNBV" loop "$TMP/no_dataset" --out "$TMP/loop" --cache "$TMP/cache" --quiet
