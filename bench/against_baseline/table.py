@@ -62,7 +62,7 @@ json.dump(summary, open(os.path.join(out, "summary.json"), "w"), indent=2)
 with open(os.path.join(out, "table.md"), "w") as f:
     f.write(f"PRI sampling + comparison (BM_Pri), city of > 200k faces, 20 views 640x480, r = 8; baseline {base_commit} "
             f"against {new_commit}; medians of {rows[0]['rounds']} alternating "
-            "rounds (bench/pri_pairs/run.sh).\n\n")
+            "rounds (bench/against_baseline/run.sh).\n\n")
     f.write("| threads | views per face | baseline M samples/s | new M samples/s | speed-up (wall) | speed-up (CPU) |\n")
     f.write("|---|---|---|---|---|---|\n")
     for r in rows:
