@@ -9,6 +9,7 @@
 
 #include "meshnbv/error.h"
 #include "meshnbv/io/file_util.h"
+#include "coordinates_text.h"
 
 namespace meshnbv::mission {
 namespace {
@@ -158,10 +159,7 @@ KeepOuts read_keep_out_geojson(const std::string& path) {
 }
 
 KeepOutBox parse_keep_out_box(const std::string& text) {
-  std::vector<double> v;
-  std::stringstream ss(text);
-  std::string item;
-  while (std::getline(ss, item, ',')) v.push_back(io::parse_double(item, "--keep-out-box", -1, "coordinate"));
+  const std::vector<double> v = comma_numbers(text, "--keep-out-box");
   if (v.size() != 6)
     throw Error("--keep-out-box takes xmin,ymin,zmin,xmax,ymax,zmax (scene coordinates), got '" + text + "'");
   KeepOutBox b;

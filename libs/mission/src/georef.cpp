@@ -14,6 +14,7 @@
 #include "meshnbv/error.h"
 #include "meshnbv/io/exif.h"
 #include "meshnbv/io/file_util.h"
+#include "coordinates_text.h"
 
 namespace meshnbv::mission {
 namespace {
@@ -269,10 +270,7 @@ Georeference parse_georef_argument(const std::string& a) {
     return g;
   }
   if (a.rfind("enu:", 0) == 0) {
-    std::vector<double> v;
-    std::stringstream ss(a.substr(4));
-    std::string item;
-    while (std::getline(ss, item, ',')) v.push_back(io::parse_double(item, "--georef", -1, "coordinate"));
+    const std::vector<double> v = comma_numbers(a.substr(4), "--georef");
     if (v.size() != 3)
       throw Error("--georef enu: takes LAT,LON,H (the tangent frame's origin, WGS84 degrees and "
                   "ellipsoidal metres), got '" + a + "'");

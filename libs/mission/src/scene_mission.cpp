@@ -13,6 +13,7 @@
 #include "meshnbv/options.h"
 #include "meshnbv/planner.h"
 #include "meshnbv/raycaster.h"
+#include "coordinates_text.h"
 
 namespace meshnbv::mission {
 namespace {
@@ -66,10 +67,7 @@ struct Rescorer {
 
 std::vector<double> numbers(const std::string& text, const std::string& what, std::size_t min,
                             std::size_t max) {
-  std::vector<double> v;
-  std::stringstream ss(text);
-  std::string item;
-  while (std::getline(ss, item, ',')) v.push_back(io::parse_double(item, what, -1, "coordinate"));
+  const std::vector<double> v = comma_numbers(text, what);
   if (v.size() < min || v.size() > max)
     throw Error(what + " takes " + std::to_string(min) + (min == max ? "" : " or " + std::to_string(max)) +
                 " comma-separated numbers, got '" + text + "'");
