@@ -185,6 +185,9 @@ void finish_loop_options(LoopArgs* a) {
   o.evaluation.percentiles = parse_numbers(a->percentiles, "--percentiles");
   o.out_dir = a->out;
   o.cache_dir = a->cache;
+  o.pri_engine = [](const Scene& scene, const PriOptions& pri, const PriPrevious* previous) {
+    return scene_pri(scene, pri, {}, previous);
+  };
   o.check();
   o.evaluation.thresholds = o.thresholds.empty() ? o.evaluation.thresholds : o.thresholds;
   o.evaluation.check();

@@ -6,6 +6,7 @@
 #include "meshnbv/error.h"
 #include "meshnbv/io/file_util.h"
 #include "meshnbv/io/mesh_io.h"
+#include "meshnbv/io/pri_io.h"
 #include "meshnbv/results.h"
 #include "meshnbv/options.h"
 #include "meshnbv/pri.h"
@@ -36,7 +37,7 @@ void add_pri_command(CLI::App& app) {
     PriOptions options;
     OptionFlags flags;
     ProgressChoice progress;
-    std::string out, json;
+    std::string out, json, previous;
     std::size_t summary_worst = 10;
     bool overwrite = false;
   };
@@ -51,6 +52,10 @@ void add_pri_command(CLI::App& app) {
                   "(green best, red worst, grey unobserved)")
       ->required();
   cmd->add_option("--json", a->json, "Summary as JSON");
+  cmd->add_option("--previous", a->previous,
+                  "Incremental PRI: a PLY written by meshnbv pri for an earlier mesh or view set; "
+                  "only the faces whose geometry, visible views, cameras, images or options "
+                  "changed are computed again (the result equals a full computation)");
   cmd->add_option("--summary-worst", a->summary_worst, "Worst faces listed in the JSON summary")
       ->check(CLI::Range(0, 1000000))
       ->capture_default_str();
@@ -61,11 +66,14 @@ void add_pri_command(CLI::App& app) {
     io::check_can_write(a->out, a->overwrite);
     if (!a->json.empty()) io::check_can_write(a->json, a->overwrite);
     const Scene scene = a->input.read();
+    std::unique_ptr<PriPrevious> previous;
+    if (!a->previous.empty()) previous = std::make_unique<PriPrevious>(io::read_pri_previous(a->previous));
     ProgressBar bar(a->progress.silent(), a->progress.json());
-    const PriResult r = compute_pri(scene, a->options, bar.callback());
+    const PriResult r = scene_pri(scene, a->options, bar.callback(), previous.get());
     bar.finish();
     io::PlyWriteOptions ply;
     ply.overwrite = a->overwrite;
+    ply.exact_coordinates = true;  // the very mesh, for --previous
     io::write_ply(mesh_with_pri(scene.mesh, r), a->out, ply);
     const std::string summary = pri_summary_json(r, a->options, a->summary_worst);
     if (!a->json.empty())
@@ -74,6 +82,9 @@ void add_pri_command(CLI::App& app) {
     std::cout << "faces " << s.faces << ": " << s.observed << " observed, " << s.unobserved
               << " unobserved, " << s.textureless << " textureless; " << r.views_used
               << " views; " << r.seconds << " s\n";
+    if (previous)
+      std::cout << "incremental: recomputed " << r.recomputed << " of " << s.faces << " faces, reused "
+                << s.faces - r.recomputed << " from " << a->previous << "\n";
     if (!s.percentiles.empty()) {
       std::cout << "PRI (" << measure_name(a->options.measure) << ", " << measure_unit(a->options.measure)
                 << ") median " << s.percentiles[3].second << ", 95% " << s.percentiles[5].second

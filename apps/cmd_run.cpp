@@ -70,7 +70,7 @@ void add_run_command(CLI::App& app) {
     const Scene scene = a->input.read();
     lap("read scene");
     ProgressBar bar(a->progress.silent(), a->progress.json());
-    const PriResult pri = compute_pri(scene, a->pri, bar.callback());
+    const PriResult pri = scene_pri(scene, a->pri, bar.callback());
     lap("PRI");
     const SuggestResult sug = suggest_views(scene, pri.pri, so, {}, bar.callback());
     lap("suggestions");
@@ -92,6 +92,7 @@ void add_run_command(CLI::App& app) {
     fs::create_directories(out);
     io::PlyWriteOptions ply;
     ply.overwrite = true;
+    ply.exact_coordinates = true;  // the very mesh, for meshnbv pri --previous
     io::write_ply(mesh_with_pri(scene.mesh, pri), (out / "pri.ply").string(), ply);
     io::write_atomically((out / "pri.json").string(),
                          [&](std::ostream& o) { o << pri_summary_json(pri, a->pri); });

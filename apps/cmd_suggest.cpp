@@ -73,7 +73,7 @@ void add_suggest_command(CLI::App& app) {
       pri = io::read_pri_for_mesh(a->pri_file, scene.mesh);
       pri_from = a->pri_file;
     } else {
-      pri = compute_pri(scene, a->pri, bar.callback()).pri;
+      pri = scene_pri(scene, a->pri, bar.callback()).pri;
       pri_from = "computed (" + measure_name(a->pri.measure) + ")";
     }
     const SuggestResult r = suggest_views(scene, pri, o, given, bar.callback());

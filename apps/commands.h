@@ -2,6 +2,9 @@
 
 #include <CLI/CLI.hpp>
 
+#include <functional>
+#include <string>
+
 #include "meshnbv/io/scene_io.h"
 #include "meshnbv/mission/scene_mission.h"
 #include "meshnbv/planner.h"
@@ -39,6 +42,18 @@ struct MissionFlags {
   // After flags->apply(): the request, keep-out files read. Throws Error.
   mission::MissionRequest request() const;
 };
+
+// The command line program: every command, one-line errors ("<program>:
+// error: ..."), exit code 0 or 1.
+int run_main(int argc, char** argv, const std::string& program);
+
+// How the commands compute PRI: compute_pri (meshnbv), or the engine set
+// before run_main (meshnbv-mpi: tiles over MPI ranks, the same result).
+using PriEngine = std::function<PriResult(const Scene&, const PriOptions&, const ProgressCallback&,
+                                          const PriPrevious*)>;
+void set_pri_engine(PriEngine engine);
+PriResult scene_pri(const Scene& scene, const PriOptions& options, const ProgressCallback& progress,
+                    const PriPrevious* previous = nullptr);
 
 // Subcommands run their work in a callback and throw meshnbv::Error on failure.
 void add_info_command(CLI::App& app);

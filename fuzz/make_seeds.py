@@ -291,6 +291,44 @@ def alicevision_seeds():
               % (version[0], version[2], version[4], focal, pp))
 
 
+def wire_seeds():
+    """The messages of libs/mpi/src/wire.cpp, little endian (x86-64)."""
+    def vec(fmt, values):
+        return struct.pack("<Q", len(values)) + b"".join(struct.pack("<" + fmt, v) for v in values)
+
+    def string(text):
+        text = text.encode() if isinstance(text, str) else text
+        return struct.pack("<Q", len(text)) + text
+
+    def camera(fx, tx):
+        head = struct.pack("<13d", fx, fx, 31.5, 23.5, 0.01, 0, 0, 0, 0, 0, 0.001, 0, 0)
+        R = struct.pack("<9d", 1, 0, 0, 0, 1, 0, 0, 0, 1)
+        return head + struct.pack("<3i", 64, 48, 0) + R + struct.pack("<3d", tx, 0, 3)
+
+    xyz = [c for v in PYRAMID_V for c in v]
+    tris = [(0, 3, 2), (0, 2, 1), (0, 1, 4), (1, 2, 4), (2, 3, 4), (3, 0, 4)]
+    scene = (struct.pack("<I", 0x4D4E5331) + vec("d", xyz) + struct.pack("<Q", len(tris)) +
+             b"".join(struct.pack("<3i", *t) for t in tris) + string("mesh.ply") + string("scene.json") +
+             struct.pack("<Q", 1 << 30) + struct.pack("<Q", 2))
+    scene += string("v0") + camera(50, 0) + string("v0.png") + struct.pack("<BB", 1, 0)
+    pixels = bytes(range(48)) * 2
+    scene += string("v1") + camera(50, 0.5) + string("") + struct.pack("<BB", 1, 1)
+    scene += struct.pack("<3i", 8, 4, 3) + string(pixels)
+    write("wire", "scene.bin", scene)
+    # Field by field, unpadded (offset measure, 4 views per face).
+    options = (struct.pack("<I", 0x4D4E4F31) + struct.pack("<i", 2) + struct.pack("<i", 0) +
+               struct.pack("<i", 4) + struct.pack("<B", 0) + struct.pack("<i", 0) + struct.pack("<d", 1e-6) +
+               struct.pack("<d", 80) + struct.pack("<B", 1) + struct.pack("<d", 0.5) + struct.pack("<d", 4) +
+               struct.pack("<d", 3) + struct.pack("<i", 4) + struct.pack("<d", 1e-4) + struct.pack("<d", 1e-6))
+    write("wire", "options.bin", options)
+    write("wire", "faces.bin", struct.pack("<I", 0x4D4E4631) + vec("I", [0, 2, 5]))
+    part = (vec("I", [1, 4]) + vec("f", [0.5, float("nan")]) + vec("i", [3, 1]) + vec("B", [0, 1]) +
+            vec("i", [3, 0]) + vec("i", [6, 6]) + vec("f", [0.1, float("nan")]) + vec("Q", [12345, 678]) +
+            vec("f", [0.25, float("nan")]) + vec("f", [2, 0]) + vec("f", [0.01, 0]) + struct.pack("<3Q", 2, 2, 1))
+    empty = b"".join(vec(f, []) for f in "IfiBiifQfff") + struct.pack("<3Q", 2, 0, 0)
+    write("wire", "parts.bin", struct.pack("<I", 0x4D4E5031) + struct.pack("<Q", 2) + part + empty)
+
+
 def main():
     shutil.rmtree(SEEDS, ignore_errors=True)
     ply_seeds()
@@ -306,6 +344,7 @@ def main():
     metashape_seeds()
     openmvg_seeds()
     alicevision_seeds()
+    wire_seeds()
 
 
 if __name__ == "__main__":

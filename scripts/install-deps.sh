@@ -21,6 +21,8 @@ PACKAGES=(
   # evaluation loop (libs/eval/src, bench/eval): Boost.Graph max-flow for the
   # visibility mesher, COLMAP 3.8 for sparse reconstruction, plots
   libboost-dev colmap python3-matplotlib
+  # meshnbv-mpi (libs/mpi, docs/scale.md): Open MPI
+  libopenmpi-dev openmpi-bin
   # robustness (fuzz/, docs/robustness.md): clang 14 with libFuzzer and the
   # sanitizer runtimes
   clang libclang-rt-14-dev

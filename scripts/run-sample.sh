@@ -6,7 +6,7 @@ cd "$(dirname "$0")/.."
 scripts/install-deps.sh
 BUILD=${MESHNBV_BUILD_DIR:-build/release}
 cmake -S . -B "$BUILD" -G Ninja -DCMAKE_BUILD_TYPE=Release -DMESHNBV_BUILD_TESTS=OFF \
-  -DMESHNBV_BUILD_BENCH=OFF -DMESHNBV_BUILD_VTK=ON -DMESHNBV_BUILD_MESHLAB=ON >/dev/null
+  -DMESHNBV_BUILD_BENCH=OFF -DMESHNBV_BUILD_VTK=ON -DMESHNBV_BUILD_MESHLAB=ON -DMESHNBV_BUILD_MPI=ON >/dev/null
 cmake --build "$BUILD" -j"$(nproc)" --target meshnbv
 OUT=${MESHNBV_OUT:-out/sample}
 mkdir -p "$OUT"

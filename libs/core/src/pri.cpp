@@ -5,7 +5,11 @@
 #include <chrono>
 #include <cmath>
 #include <memory>
+#include <array>
+#include <cstring>
+#include <filesystem>
 #include <numeric>
+#include <unordered_map>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -231,7 +235,8 @@ double pair_error_sum(const std::vector<const float*>& patches, std::size_t n, M
 }
 
 PriViewSelection select_pri_views(const Scene& scene, const PriOptions& options,
-                                  const ProgressCallback& progress) {
+                                  const ProgressCallback& progress,
+                                  const std::vector<std::uint32_t>& faces, const RayCaster* caster) {
   options.check();
   const TriangleMesh& mesh = scene.mesh;
   mesh.validate(scene.mesh_path);
@@ -246,29 +251,158 @@ PriViewSelection select_pri_views(const Scene& scene, const PriOptions& options,
   for (std::size_t i : s.image_views) {
     scene.views[i].camera.check("view '" + scene.views[i].label + "'");
     s.cameras.push_back(scene.views[i].camera);
+    s.view_keys.push_back(pri_view_key(scene, i));
     centres.push_back(s.cameras.back().center());
   }
+  s.options_key = pri_options_key(options);
   const std::size_t F = mesh.num_faces();
-  s.faces.resize(F);
+  for (std::size_t j = 0; j < faces.size(); ++j)
+    if (faces[j] >= F || (j > 0 && faces[j] <= faces[j - 1]))
+      throw Error("the faces to select views for must be ascending ids below " + std::to_string(F));
+  s.face_ids = faces;
+  const std::size_t n = faces.empty() ? F : faces.size();
+  s.faces.resize(n);
   const int threads = options.threads > 0 ? options.threads : tbb::this_task_arena::max_concurrency();
   tbb::task_arena arena(threads);
   arena.execute([&] {
-    const RayCaster caster(mesh);
-    const VertexVisibility vis(mesh, caster, s.cameras, options.visibility, progress);
+    std::unique_ptr<RayCaster> own;
+    if (!caster) own = std::make_unique<RayCaster>(mesh);
+    const RayCaster& rc = caster ? *caster : *own;
+    VertexVisibility vis;
+    if (faces.empty()) {
+      vis = VertexVisibility(mesh, rc, s.cameras, options.visibility, progress);
+    } else {
+      std::vector<std::uint32_t> vertices;
+      vertices.reserve(3 * faces.size());
+      for (std::uint32_t f : faces)
+        for (int k = 0; k < 3; ++k) vertices.push_back(std::uint32_t(mesh.faces[f][k]));
+      std::sort(vertices.begin(), vertices.end());
+      vertices.erase(std::unique(vertices.begin(), vertices.end()), vertices.end());
+      vis = VertexVisibility(mesh, rc, s.cameras, options.visibility, progress, vertices);
+    }
     const std::vector<Vec3> normals = mesh.face_normals();
     const double abs_eps = options.visibility.absolute_eps_of_diagonal * mesh.bounding_box().diagonal();
     // Chunks of faces in parallel; progress and cancellation between chunks.
     constexpr std::size_t kChunk = 16384;
-    for (std::size_t begin = 0; begin < F; begin += kChunk) {
-      const std::size_t end = std::min(F, begin + kChunk);
+    for (std::size_t begin = 0; begin < n; begin += kChunk) {
+      const std::size_t end = std::min(n, begin + kChunk);
       tbb::parallel_for(tbb::blocked_range<std::size_t>(begin, end), [&](const auto& r) {
-        for (std::size_t f = r.begin(); f < r.end(); ++f)
-          s.faces[f] = select_views(mesh, normals, vis, caster, s.cameras, centres, f, options, abs_eps);
+        for (std::size_t j = r.begin(); j < r.end(); ++j)
+          s.faces[j] = select_views(mesh, normals, vis, rc, s.cameras, centres, s.face_id(j), options, abs_eps);
       });
-      report_progress(progress, double(end) / double(F), "view selection");
+      report_progress(progress, double(end) / double(n), "view selection");
     }
   });
   return s;
+}
+
+namespace {
+
+// 64-bit keys: splitmix64's finaliser over a running combination.
+std::uint64_t mix64(std::uint64_t x) {
+  x += 0x9e3779b97f4a7c15ull;
+  x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ull;
+  x = (x ^ (x >> 27)) * 0x94d049bb133111ebull;
+  return x ^ (x >> 31);
+}
+std::uint64_t combine(std::uint64_t h, std::uint64_t v) { return mix64(h ^ mix64(v)); }
+std::uint64_t combine(std::uint64_t h, double v) {
+  std::uint64_t bits;
+  std::memcpy(&bits, &v, sizeof bits);
+  return combine(h, bits);
+}
+std::uint64_t combine(std::uint64_t h, const std::string& text) {
+  std::uint64_t fnv = 0xcbf29ce484222325ull;  // FNV-1a
+  for (unsigned char c : text) fnv = (fnv ^ c) * 0x100000001b3ull;
+  return combine(combine(h, std::uint64_t(text.size())), fnv);
+}
+
+}  // namespace
+
+std::uint64_t pri_view_key(const Scene& scene, std::size_t view) {
+  const View& v = scene.views.at(view);
+  const PinholeCamera& c = v.camera;
+  std::uint64_t h = 0x6d6573686e6276ull;  // "meshnbv"
+  for (double x : {c.fx, c.fy, c.cx, c.cy, c.k1, c.k2, c.k3, c.k4, c.k5, c.k6, c.p1, c.p2, c.skew}) h = combine(h, x);
+  h = combine(h, std::uint64_t(c.width) << 32 | std::uint32_t(c.height));
+  h = combine(h, std::uint64_t(c.lens));
+  for (int r = 0; r < 3; ++r) {
+    for (int k = 0; k < 3; ++k) h = combine(h, c.R(r, k));
+    h = combine(h, c.t[r]);
+  }
+  if (v.pixels) {
+    const Image& im = *v.pixels;
+    h = combine(h, std::uint64_t(im.width()) << 40 ^ std::uint64_t(im.height()) << 8 ^ std::uint64_t(im.channels()));
+    const std::uint8_t* d = im.data();
+    std::size_t k = 0;
+    for (; k + 8 <= im.bytes(); k += 8) {
+      std::uint64_t w;
+      std::memcpy(&w, d + k, 8);
+      h = combine(h, w);
+    }
+    for (; k < im.bytes(); ++k) h = combine(h, std::uint64_t(d[k]));
+    return h;
+  }
+  h = combine(h, v.image_path);
+  std::error_code ec;
+  const auto size = std::filesystem::file_size(v.image_path, ec);
+  if (!ec) h = combine(h, std::uint64_t(size));
+  const auto time = std::filesystem::last_write_time(v.image_path, ec);
+  if (!ec) h = combine(h, std::uint64_t(time.time_since_epoch().count()));
+  return h;
+}
+
+std::uint64_t pri_options_key(const PriOptions& options) {
+  std::uint64_t h = 0x7072696f707473ull;  // "priopts"
+  for (const auto& spec : pri_option_table()) {
+    if (spec.name == "threads") continue;  // does not change a value
+    h = combine(combine(h, spec.name), option_value_text(spec.get(options)));
+  }
+  h = combine(h, options.visibility.relative_eps);
+  h = combine(h, options.visibility.absolute_eps_of_diagonal);
+  return h;
+}
+
+std::vector<std::vector<std::uint32_t>> pri_tiles(const TriangleMesh& mesh, std::size_t count,
+                                                  const std::vector<std::uint32_t>& faces) {
+  std::vector<std::uint32_t> ids = faces;
+  if (faces.empty()) {
+    ids.resize(mesh.num_faces());
+    std::iota(ids.begin(), ids.end(), 0u);
+  }
+  std::vector<std::vector<std::uint32_t>> tiles;
+  if (ids.empty() || count == 0) return tiles;
+  BoundingBox box;
+  for (std::uint32_t f : ids) box.extend(mesh.face_centroid(f));
+  const Vec3 extent = box.extent().cwiseMax(Vec3::Constant(1e-300));
+  // 21 bits per axis, interleaved.
+  auto spread = [](std::uint64_t x) {
+    x &= 0x1fffff;
+    x = (x | x << 32) & 0x1f00000000ffffull;
+    x = (x | x << 16) & 0x1f0000ff0000ffull;
+    x = (x | x << 8) & 0x100f00f00f00f00full;
+    x = (x | x << 4) & 0x10c30c30c30c30c3ull;
+    x = (x | x << 2) & 0x1249249249249249ull;
+    return x;
+  };
+  std::vector<std::pair<std::uint64_t, std::uint32_t>> keyed(ids.size());
+  for (std::size_t j = 0; j < ids.size(); ++j) {
+    const Vec3 u = (mesh.face_centroid(ids[j]) - box.min).cwiseQuotient(extent);
+    std::uint64_t code = 0;
+    for (int k = 0; k < 3; ++k)
+      code |= spread(std::uint64_t(std::clamp(u[k], 0.0, 1.0) * 2097151.0)) << k;
+    keyed[j] = {code, ids[j]};
+  }
+  std::sort(keyed.begin(), keyed.end());
+  count = std::min(count, keyed.size());
+  for (std::size_t t = 0; t < count; ++t) {
+    const std::size_t begin = keyed.size() * t / count, end = keyed.size() * (t + 1) / count;
+    std::vector<std::uint32_t> tile;
+    for (std::size_t j = begin; j < end; ++j) tile.push_back(keyed[j].second);
+    std::sort(tile.begin(), tile.end());
+    tiles.push_back(std::move(tile));
+  }
+  return tiles;
 }
 
 namespace {
@@ -445,7 +579,7 @@ void sample_view(const PriInputs& in, const SampleBlock& block, std::size_t i) {
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, faces.size()), [&](const auto& r) {
     for (std::size_t j = r.begin(); j < r.end(); ++j) {
       const auto [f, k] = faces[j];
-      sample_face(in.scene.mesh, f, fv[f], view, in.hypotheses_px,
+      sample_face(in.scene.mesh, in.selection.face_id(f), fv[f], view, in.hypotheses_px,
                   block.slot(f, std::size_t(k), slot_floats(in, fv[f])));
     }
   });
@@ -530,7 +664,9 @@ float texture_of(const std::vector<const float*>& patches, std::size_t at, std::
 }
 
 // PRI, views, status and evidence of every face of the block from its samples.
-void score_block(const PriInputs& in, const SampleBlock& block, PriResult* result, std::vector<float>* precision) {
+// (Positions f of the selection: face in.selection.face_id(f); `result`'s
+// arrays are indexed by position.)
+void score_block(const PriInputs& in, const SampleBlock& block, PriResult* result) {
   const std::vector<PriFaceViews>& fv = in.selection.faces;
   const int hyps = hypotheses(in.options);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(block.begin, block.end), [&](const auto& r) {
@@ -548,6 +684,9 @@ void score_block(const PriInputs& in, const SampleBlock& block, PriResult* resul
         if (int(k) == fv[f].reference) ref = patches.size();
         patches.push_back(slot);
       }
+      std::uint64_t key = in.selection.options_key;
+      for (int v : fv[f].views) key = combine(key, in.selection.view_keys[std::size_t(v)]);
+      result->evidence_key[f] = key;
       result->pri_views[f] = int(patches.size());
       result->pri_samples[f] = int(lattice_points(fv[f].samples_per_side));
       if (patches.size() < 2) continue;  // unobserved
@@ -562,13 +701,17 @@ void score_block(const PriInputs& in, const SampleBlock& block, PriResult* resul
       }
       // offset: signed here; smooth_offsets() averages and takes the magnitude.
       result->pri[f] = offset ? float(e.sum * fv[f].step) : float(e.sum / double(e.pairs));
+      if (offset) {
+        result->offset_signed[f] = result->pri[f];
+        result->offset_pixel[f] = float(fv[f].pixel);
+      }
       // offset: the estimate's precision (inverse variance, up to a common
       // factor) by the Laplace approximation of the sweep: the cost's
       // curvature at its minimum times the comparisons made (views x
       // samples) over the residual noise, the least cost. A minimum at an
       // end of the sweep has no curvature: no weight.
       if (offset)
-        (*precision)[f] = float(e.curvature * double(e.pairs) * double(n) / std::max(e.best_cost, kMinResidualCost));
+        result->offset_precision[f] = float(e.curvature * double(e.pairs) * double(n) / std::max(e.best_cost, kMinResidualCost));
       result->status[f] = FaceStatus::Observed;
     }
   });
@@ -621,16 +764,16 @@ void support_faces(const TriangleMesh& mesh, const VertexFaces& vf, std::size_t 
 // (sigma = support_radius pixels of the face's reference view, on the
 // distance between centroids), each weighted by a Gaussian of that distance
 // times its estimate's `precision` (score_block); PRI is its magnitude.
-void smooth_offsets(const TriangleMesh& mesh, const PriViewSelection& selection, const PriOptions& o,
-                    const std::vector<float>& precision, PriResult* result) {
+void smooth_offsets(const TriangleMesh& mesh, const PriOptions& o, PriResult* result) {
   const std::size_t F = mesh.num_faces();
-  const std::vector<float> signed_offset = result->pri;
+  const std::vector<float>& signed_offset = result->offset_signed;
+  const std::vector<float>& precision = result->offset_precision;
   const VertexFaces vf(mesh);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, F), [&](const auto& r) {
     std::vector<std::uint32_t> near, frontier;
     for (std::size_t f = r.begin(); f < r.end(); ++f) {
       if (result->status[f] != FaceStatus::Observed) continue;
-      const double sigma = o.support_radius * selection.faces[f].pixel;
+      const double sigma = o.support_radius * double(result->offset_pixel[f]);
       if (!(sigma > 0)) {
         result->pri[f] = std::abs(signed_offset[f]);
         continue;
@@ -674,40 +817,189 @@ void count_statuses(PriResult* result) {
 
 }  // namespace
 
-PriResult compute_pri(const Scene& scene, const PriOptions& options,
-                      const ProgressCallback& progress) {
-  const auto start = std::chrono::steady_clock::now();
-  const PriViewSelection selection = select_pri_views(scene, options, progress);
-  const PriInputs in{scene, selection, options, options.color ? 3 : 1, hypothesis_offsets(options)};
-  const std::size_t F = scene.mesh.num_faces();
-  const std::size_t views = selection.cameras.size();
-  PriResult result;
-  result.pri.assign(F, std::numeric_limits<float>::quiet_NaN());
-  result.pri_views.assign(F, 0);
-  result.status.assign(F, FaceStatus::Unobserved);
-  result.pri_pairs.assign(F, 0);
-  result.pri_samples.assign(F, 0);
-  result.pri_texture.assign(F, std::numeric_limits<float>::quiet_NaN());
-  result.views_used = selection.image_views.size();
-  // offset: each estimate's precision (score_block), for smooth_offsets.
-  std::vector<float> precision(options.measure == Measure::Offset ? F : 0, 0.0f);
+namespace {
 
-  const int threads = options.threads > 0 ? options.threads : tbb::this_task_arena::max_concurrency();
-  tbb::task_arena arena(threads);
+// Every per-face array of `r` sized n, at the "not computed" values.
+void init_result(PriResult* r, std::size_t n, const PriOptions& options) {
+  r->pri.assign(n, std::numeric_limits<float>::quiet_NaN());
+  r->pri_views.assign(n, 0);
+  r->status.assign(n, FaceStatus::Unobserved);
+  r->pri_pairs.assign(n, 0);
+  r->pri_samples.assign(n, 0);
+  r->pri_texture.assign(n, std::numeric_limits<float>::quiet_NaN());
+  r->evidence_key.assign(n, 0);
+  const std::size_t m = options.measure == Measure::Offset ? n : 0;
+  r->offset_signed.assign(m, std::numeric_limits<float>::quiet_NaN());
+  r->offset_precision.assign(m, 0.0f);
+  r->offset_pixel.assign(m, 0.0f);
+}
+
+// Face `from` of `a` into face `to` of `b` (every per-face array).
+void copy_face(const PriResult& a, std::size_t from, PriResult* b, std::size_t to) {
+  b->pri[to] = a.pri[from];
+  b->pri_views[to] = a.pri_views[from];
+  b->status[to] = a.status[from];
+  b->pri_pairs[to] = a.pri_pairs[from];
+  b->pri_samples[to] = a.pri_samples[from];
+  b->pri_texture[to] = a.pri_texture[from];
+  b->evidence_key[to] = a.evidence_key[from];
+  if (!b->offset_signed.empty()) {
+    b->offset_signed[to] = a.offset_signed[from];
+    b->offset_precision[to] = a.offset_precision[from];
+    b->offset_pixel[to] = a.offset_pixel[from];
+  }
+}
+
+int thread_count(const PriOptions& options) {
+  return options.threads > 0 ? options.threads : tbb::this_task_arena::max_concurrency();
+}
+
+}  // namespace
+
+PriPart compute_pri_part(const Scene& scene, const PriOptions& options, const PriViewSelection& selection,
+                         const ProgressCallback& progress) {
+  const PriInputs in{scene, selection, options, options.color ? 3 : 1, hypothesis_offsets(options)};
+  const std::size_t n = selection.faces.size();
+  const std::size_t views = selection.cameras.size();
+  PriPart part;
+  part.faces.resize(n);
+  for (std::size_t j = 0; j < n; ++j) part.faces[j] = selection.face_id(j);
+  PriResult& result = part.values;
+  init_result(&result, n, options);
+  result.views_used = selection.image_views.size();
+  result.recomputed = n;
+  const std::size_t loads_before = scene.images ? scene.images->loads() : 0;
+  tbb::task_arena arena(thread_count(options));
   arena.execute([&] {
-    for (std::size_t begin = 0; begin < F;) {
+    for (std::size_t begin = 0; begin < n;) {
       const SampleBlock block = plan_block(in, begin);
       for (std::size_t i = 0; i < views; ++i) {
         sample_view(in, block, i);
-        const double done = (double(block.begin) + double(block.end - block.begin) * (i + 1) / views) / F;
+        const double done = (double(block.begin) + double(block.end - block.begin) * double(i + 1) / double(views)) / double(n);
         report_progress(progress, 0.95 * done, "pri");
       }
-      score_block(in, block, &result, &precision);
+      score_block(in, block, &result);
       begin = block.end;
     }
-    if (options.measure == Measure::Offset) smooth_offsets(scene.mesh, selection, options, precision, &result);
   });
+  result.images_decoded = scene.images ? scene.images->loads() - loads_before : 0;
+  return part;
+}
+
+PriResult assemble_pri(const Scene& scene, const PriOptions& options, const std::vector<PriPart>& parts) {
+  const std::size_t F = scene.mesh.num_faces();
+  PriResult result;
+  init_result(&result, F, options);
+  std::vector<std::uint8_t> seen(F, 0);
+  for (const PriPart& part : parts) {
+    if (part.values.pri.size() != part.faces.size() || part.values.evidence_key.size() != part.faces.size() ||
+        (options.measure == Measure::Offset) != !part.values.offset_signed.empty())
+      throw Error("a PRI part's values do not match its faces or the measure");
+    for (std::size_t j = 0; j < part.faces.size(); ++j) {
+      const std::uint32_t f = part.faces[j];
+      if (f >= F || seen[f]) throw Error("a PRI part holds face " + std::to_string(f) + " twice or out of range");
+      seen[f] = 1;
+      copy_face(part.values, j, &result, f);
+    }
+    result.recomputed += part.values.recomputed;
+    result.images_decoded += part.values.images_decoded;
+    result.views_used = std::max(result.views_used, part.values.views_used);
+  }
+  const std::size_t missing = std::size_t(std::count(seen.begin(), seen.end(), std::uint8_t(0)));
+  if (missing) throw Error("the PRI parts miss " + std::to_string(missing) + " of " + std::to_string(F) + " faces");
+  if (options.measure == Measure::Offset) {
+    tbb::task_arena arena(thread_count(options));
+    arena.execute([&] { smooth_offsets(scene.mesh, options, &result); });
+  }
   count_statuses(&result);
+  return result;
+}
+
+PriResult compute_pri(const Scene& scene, const PriOptions& options,
+                      const ProgressCallback& progress) {
+  return compute_pri(scene, options, progress, nullptr);
+}
+
+namespace {
+
+// A face's vertex positions, in order, as a hashable key.
+struct FaceGeometry {
+  std::array<double, 9> x;
+  bool operator==(const FaceGeometry& o) const {
+    return std::memcmp(x.data(), o.x.data(), sizeof x) == 0;
+  }
+};
+struct FaceGeometryHash {
+  std::size_t operator()(const FaceGeometry& g) const {
+    std::uint64_t h = 0;
+    for (double v : g.x) h = combine(h, v);
+    return std::size_t(h);
+  }
+};
+FaceGeometry face_geometry(const TriangleMesh& mesh, std::size_t f) {
+  FaceGeometry g;
+  for (int k = 0; k < 3; ++k)
+    for (int c = 0; c < 3; ++c) g.x[std::size_t(3 * k + c)] = mesh.vertices[mesh.faces[f][k]][c];
+  return g;
+}
+
+}  // namespace
+
+PriReuse reuse_previous_pri(const Scene& scene, const PriOptions& options, const PriViewSelection& selection,
+                            const PriPrevious& previous) {
+  const PriResult& old = previous.result;
+  const std::size_t G = previous.mesh.num_faces();
+  if (!selection.face_ids.empty() || selection.faces.size() != scene.mesh.num_faces())
+    throw Error("incremental PRI needs the view selection of every face");
+  if (old.pri.size() != G || old.evidence_key.size() != G)
+    throw Error("the previous PRI does not hold one value and evidence key per face of its mesh");
+  if ((options.measure == Measure::Offset) && old.offset_signed.size() != G)
+    throw Error("the previous PRI has no offset-measure values (computed with another measure)");
+  std::unordered_map<FaceGeometry, std::uint32_t, FaceGeometryHash> by_geometry;
+  by_geometry.reserve(G);
+  for (std::size_t g = 0; g < G; ++g)
+    if (old.evidence_key[g] != 0) by_geometry.emplace(face_geometry(previous.mesh, g), std::uint32_t(g));
+  PriReuse out;
+  PriViewSelection& changed = out.changed;
+  changed.image_views = selection.image_views;
+  changed.cameras = selection.cameras;
+  changed.view_keys = selection.view_keys;
+  changed.options_key = selection.options_key;
+  std::vector<std::uint32_t> from;  // previous face of each reused face
+  for (std::size_t f = 0; f < selection.faces.size(); ++f) {
+    // The key score_block would give the face now.
+    std::uint64_t key = selection.options_key;
+    for (int v : selection.faces[f].views) key = combine(key, selection.view_keys[std::size_t(v)]);
+    const auto it = by_geometry.find(face_geometry(scene.mesh, f));
+    if (it != by_geometry.end() && old.evidence_key[it->second] == key) {
+      out.reused.faces.push_back(std::uint32_t(f));
+      from.push_back(it->second);
+      continue;
+    }
+    changed.face_ids.push_back(std::uint32_t(f));
+    changed.faces.push_back(selection.faces[f]);
+  }
+  init_result(&out.reused.values, out.reused.faces.size(), options);
+  for (std::size_t j = 0; j < from.size(); ++j) copy_face(old, from[j], &out.reused.values, j);
+  out.reused.values.views_used = selection.image_views.size();
+  return out;
+}
+
+PriResult compute_pri(const Scene& scene, const PriOptions& options, const ProgressCallback& progress,
+                      const PriPrevious* previous) {
+  const auto start = std::chrono::steady_clock::now();
+  const PriViewSelection selection = select_pri_views(scene, options, progress);
+  std::vector<PriPart> parts;
+  if (previous) {
+    PriReuse reuse = reuse_previous_pri(scene, options, selection, *previous);
+    parts.push_back(std::move(reuse.reused));
+    // No changed face: an empty selection would mean "every face".
+    if (!reuse.changed.faces.empty()) parts.push_back(compute_pri_part(scene, options, reuse.changed, progress));
+  } else {
+    parts.push_back(compute_pri_part(scene, options, selection, progress));
+  }
+  PriResult result = assemble_pri(scene, options, parts);
+  result.views_used = selection.image_views.size();
   report_progress(progress, 1.0, "pri");
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;

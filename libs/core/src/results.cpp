@@ -113,6 +113,22 @@ TriangleMesh mesh_with_pri(const TriangleMesh& mesh, const PriResult& result) {
   out.set_face_attribute("pri_pairs", std::vector<float>(result.pri_pairs.begin(), result.pri_pairs.end()));
   out.set_face_attribute("pri_samples", std::vector<float>(result.pri_samples.begin(), result.pri_samples.end()));
   out.set_face_attribute("pri_texture", result.pri_texture);
+  if (result.evidence_key.size() == result.pri.size()) {
+    // The 64-bit evidence key in three floats of 22, 21 and 21 bits (exact
+    // integers: a float holds them up to 2^24).
+    const int shift[3] = {0, 22, 43}, bits[3] = {22, 21, 21};
+    for (int k = 0; k < 3; ++k) {
+      std::vector<float> part(result.pri.size());
+      for (std::size_t f = 0; f < part.size(); ++f)
+        part[f] = float((result.evidence_key[f] >> shift[k]) & ((std::uint64_t(1) << bits[k]) - 1));
+      out.set_face_attribute(kPriKeyAttributes[k], std::move(part));
+    }
+  }
+  if (result.offset_signed.size() == result.pri.size()) {
+    out.set_face_attribute("pri_offset_signed", result.offset_signed);
+    out.set_face_attribute("pri_offset_precision", result.offset_precision);
+    out.set_face_attribute("pri_offset_pixel", result.offset_pixel);
+  }
   const PriSummary s = summarize_pri(result, 0);
   double lo = 0, hi = 1;
   for (const auto& [p, v] : s.percentiles) {
@@ -149,6 +165,8 @@ std::string pri_summary_json(const PriResult& result, const PriOptions& options,
   // Every option of the table, under its one name (options.h).
   j["options"] = json::parse(options_json(options, pri_option_table()));
   j["views_used"] = result.views_used;
+  j["recomputed_faces"] = result.recomputed;
+  j["images_decoded"] = result.images_decoded;
   j["seconds"] = result.seconds;
   return j.dump(2) + "\n";
 }

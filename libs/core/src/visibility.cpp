@@ -24,10 +24,32 @@ bool point_visible(const RayCaster& caster, const PinholeCamera& camera, const V
 VertexVisibility::VertexVisibility(const TriangleMesh& mesh, const RayCaster& caster,
                                    const std::vector<PinholeCamera>& cameras,
                                    const VisibilityOptions& options,
-                                   const ProgressCallback& progress)
-    : num_views_(cameras.size()), bits_(mesh.num_vertices() * cameras.size(), 0) {
+                                   const ProgressCallback& progress) {
+  compute(mesh, caster, cameras, options, progress, nullptr);
+}
+
+VertexVisibility::VertexVisibility(const TriangleMesh& mesh, const RayCaster& caster,
+                                   const std::vector<PinholeCamera>& cameras,
+                                   const VisibilityOptions& options,
+                                   const ProgressCallback& progress,
+                                   const std::vector<std::uint32_t>& vertices) {
+  row_.assign(mesh.num_vertices(), kNoRow);
+  for (std::size_t k = 0; k < vertices.size(); ++k) {
+    if (vertices[k] >= mesh.num_vertices())
+      throw Error("vertex " + std::to_string(vertices[k]) + " of a visibility subset is out of range");
+    row_[vertices[k]] = std::uint32_t(k);
+  }
+  compute(mesh, caster, cameras, options, progress, &vertices);
+}
+
+void VertexVisibility::compute(const TriangleMesh& mesh, const RayCaster& caster,
+                               const std::vector<PinholeCamera>& cameras,
+                               const VisibilityOptions& options, const ProgressCallback& progress,
+                               const std::vector<std::uint32_t>* vertices) {
+  num_views_ = cameras.size();
   const double abs_eps = options.absolute_eps_of_diagonal * mesh.bounding_box().diagonal();
-  const std::size_t V = mesh.num_vertices();
+  const std::size_t V = vertices ? vertices->size() : mesh.num_vertices();
+  bits_.assign(V * num_views_, 0);
   // Chunks of vertices in parallel; progress and cancellation between chunks.
   const std::size_t chunk = 16384;
   for (std::size_t begin = 0; begin < V; begin += chunk) {
@@ -37,11 +59,13 @@ VertexVisibility::VertexVisibility(const TriangleMesh& mesh, const RayCaster& ca
                         // View by view: consecutive rays share an origin and
                         // walk nearby parts of the BVH.
                         for (std::size_t i = 0; i < num_views_; ++i)
-                          for (std::size_t v = r.begin(); v < r.end(); ++v)
-                            bits_[v * num_views_ + i] = point_visible(
+                          for (std::size_t k = r.begin(); k < r.end(); ++k) {
+                            const std::size_t v = vertices ? (*vertices)[k] : k;
+                            bits_[k * num_views_ + i] = point_visible(
                                 caster, cameras[i], mesh.vertices[v], options.relative_eps, abs_eps);
+                          }
                       });
-    report_progress(progress, double(end) / V, "visibility");
+    report_progress(progress, double(end) / double(V), "visibility");
   }
 }
 

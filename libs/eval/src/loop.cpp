@@ -163,6 +163,8 @@ nlohmann::json step_json(const StepRecord& s) {
                   {"pri", s.seconds_pri},
                   {"choose", s.seconds_choose},
                   {"evaluate", s.seconds_evaluate}};
+  // nbv: the faces of the step's PRI computed again (incremental), of all.
+  j["pri_faces"] = {{"recomputed", s.pri_recomputed}, {"total", s.pri_faces}};
   return j;
 }
 
@@ -524,6 +526,9 @@ struct StrategyState {
   std::mt19937_64 rng;                  // random
   std::shared_ptr<ImageCache> images;   // nbv: the selected views' images, decoded once
   std::unique_ptr<RayCaster> truth;     // nbv with new poses: renders them
+  // nbv: the last step's mesh and PRI, so that the next step computes only
+  // the faces that changed (incremental PRI, equal to a full computation).
+  std::unique_ptr<PriPrevious> previous_pri;
 };
 
 // A strategy's choice of the next view.
@@ -533,21 +538,27 @@ struct Choice {
   bool take_new_pose = false;   // continuous nbv: render new_pose
   PinholeCamera new_pose;
   double seconds_pri = 0;
+  std::size_t pri_recomputed = 0, pri_faces = 0;
 };
 
 // nbv: PRI of the reconstruction in the selected views, then the best
 // suggestion: one of the dataset views left, or (continuous) a new pose.
 // Leaves `choice` alone when there is nothing to reason about.
 void choose_by_nbv(const LoopContext& ctx, const Selection& sel, const TriangleMesh& mesh,
-                   const StrategyState& state, Choice* choice) {
+                   StrategyState& state, Choice* choice) {
   if (mesh.empty()) return;
   Scene scene;
   scene.mesh = mesh;
   scene.images = state.images;
   for (int i : sel.selected) scene.views.push_back(ctx.ws.views()[std::size_t(i)]);
   const auto tp = std::chrono::steady_clock::now();
-  const PriResult pri = compute_pri(scene, ctx.options.pri);
+  const PriPrevious* previous = state.previous_pri.get();
+  PriResult pri = ctx.options.pri_engine ? ctx.options.pri_engine(scene, ctx.options.pri, previous)
+                                         : compute_pri(scene, ctx.options.pri, {}, previous);
   choice->seconds_pri = std::chrono::duration<double>(std::chrono::steady_clock::now() - tp).count();
+  choice->pri_recomputed = pri.recomputed;
+  choice->pri_faces = pri.pri.size();
+  state.previous_pri = std::make_unique<PriPrevious>(PriPrevious{scene.mesh, pri});
   if (pri.observed == 0) return;
   SuggestOptions so = ctx.options.suggest;
   so.top = 1;
@@ -684,6 +695,8 @@ LoopResult run_loop(const Dataset& dataset, const LoopOptions& options,
     rec.added = added;
     rec.chosen_by = last_choice.by;
     rec.seconds_pri = last_choice.seconds_pri;
+    rec.pri_recomputed = last_choice.pri_recomputed;
+    rec.pri_faces = last_choice.pri_faces;
     rec.seconds_choose = seconds_choose;
     result.steps.push_back(rec);
     result.seconds = seconds_since(start);

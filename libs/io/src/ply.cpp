@@ -816,9 +816,9 @@ void write_body(std::ostream& os, const TriangleMesh& mesh, const PlyWriteOption
 // coordinates ~1e6) rounding to float moves vertices by centimetres. Double
 // when rounding would move any vertex by more than 1e-6 of the bounding-box
 // diagonal.
-bool needs_double(const TriangleMesh& mesh) {
+bool needs_double(const TriangleMesh& mesh, bool exact) {
   if (mesh.vertices.empty()) return false;
-  const double tolerance = 1e-6 * mesh.bounding_box().diagonal();
+  const double tolerance = exact ? 0.0 : 1e-6 * mesh.bounding_box().diagonal();
   for (const Vec3& p : mesh.vertices) {
     if (p.cwiseAbs().maxCoeff() > std::numeric_limits<float>::max()) return true;
     double moved2 = 0;
@@ -869,7 +869,7 @@ void write_ply(const TriangleMesh& mesh, const std::string& path, const PlyWrite
   check_can_write(path, requested.overwrite);
   check_writable(mesh, path);
   PlyWriteOptions options = requested;
-  if (!options.double_precision) options.double_precision = needs_double(mesh);
+  if (!options.double_precision) options.double_precision = needs_double(mesh, options.exact_coordinates);
   write_atomically(
       path,
       [&](std::ostream& os) {

@@ -8,6 +8,7 @@
 #include "meshnbv/error.h"
 #include "meshnbv/io/file_util.h"
 #include "meshnbv/io/mesh_io.h"
+#include "meshnbv/results.h"
 
 namespace meshnbv::io {
 
@@ -74,6 +75,59 @@ std::vector<float> read_pri_for_mesh(const std::string& path, const TriangleMesh
                     path);
   }
   return *q;
+}
+
+PriPrevious read_pri_previous(const std::string& path) {
+  if (extension_lower(path) != ".ply")
+    throw Error("the previous PRI must be a PLY file written by meshnbv pri", path);
+  PriPrevious out;
+  out.mesh = read_ply(path);
+  const std::size_t F = out.mesh.num_faces();
+  auto need = [&](const char* name) -> const std::vector<float>& {
+    const std::vector<float>* a = out.mesh.face_attribute(name);
+    if (!a)
+      throw Error(std::string("no per-face '") + name + "' in the previous PRI (write it with meshnbv pri " +
+                      "of this version)",
+                  path);
+    return *a;
+  };
+  auto count = [&](const char* name, std::vector<int>* to, double max) {
+    const std::vector<float>& a = need(name);
+    to->resize(F);
+    for (std::size_t f = 0; f < F; ++f) {
+      if (!(a[f] >= 0 && a[f] <= max && a[f] == std::floor(a[f])))
+        throw Error("face " + std::to_string(f) + " has " + name + " " + std::to_string(a[f]) +
+                        ", not a count meshnbv pri writes",
+                    path);
+      (*to)[f] = int(a[f]);
+    }
+  };
+  PriResult& r = out.result;
+  r.pri = need("quality");
+  count("pri_views", &r.pri_views, 1e7);
+  count("pri_pairs", &r.pri_pairs, 1e7);
+  count("pri_samples", &r.pri_samples, 1e7);
+  r.pri_texture = need("pri_texture");
+  r.evidence_key.assign(F, 0);
+  const int shift[3] = {0, 22, 43}, bits[3] = {22, 21, 21};
+  for (int k = 0; k < 3; ++k) {
+    std::vector<int> part;
+    count(kPriKeyAttributes[k], &part, double((1 << bits[k]) - 1));
+    for (std::size_t f = 0; f < F; ++f) r.evidence_key[f] |= std::uint64_t(part[f]) << shift[k];
+  }
+  if (out.mesh.face_attribute("pri_offset_signed")) {
+    r.offset_signed = need("pri_offset_signed");
+    r.offset_precision = need("pri_offset_precision");
+    r.offset_pixel = need("pri_offset_pixel");
+  }
+  r.status.resize(F);
+  for (std::size_t f = 0; f < F; ++f)
+    r.status[f] = !std::isnan(r.pri[f]) ? FaceStatus::Observed
+                  : r.pri_views[f] >= 2 ? FaceStatus::Textureless
+                                        : FaceStatus::Unobserved;
+  out.mesh.face_attributes.clear();
+  out.mesh.face_colors.clear();
+  return out;
 }
 
 }  // namespace meshnbv::io

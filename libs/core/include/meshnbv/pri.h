@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "meshnbv/progress.h"
+#include "meshnbv/raycaster.h"
 #include "meshnbv/scene.h"
 #include "meshnbv/visibility.h"
 
@@ -81,8 +82,19 @@ struct PriResult {
   std::vector<int> pri_samples;    // samples per view (lattice points)
   std::vector<float> pri_texture;  // texture strength: standard deviation of the samples
                                    // (intensity in [0, 1]), mean over the compared views
+  // offset: each face's signed offset before the support smoothing, its
+  // precision, and the scene units per pixel at its centroid in its
+  // reference view (what smooth_offsets reads); empty for ssd and ncc.
+  std::vector<float> offset_signed, offset_precision, offset_pixel;
+  // What each face's value rests on, as one 64-bit key (pri_evidence_key):
+  // the options and, in order, the identity of every view compared. The
+  // same face (identical vertex positions, in order) with the same key has
+  // the same value, bit for bit: incremental PRI (PriPrevious) reuses it.
+  std::vector<std::uint64_t> evidence_key;
   std::size_t observed = 0, unobserved = 0, textureless = 0;
   std::size_t views_used = 0;    // views with an image that took part
+  std::size_t recomputed = 0;    // faces computed by this call (the others were reused)
+  std::size_t images_decoded = 0;  // image decodes this call needed (cache misses)
   double seconds = 0;
 };
 
@@ -104,13 +116,81 @@ struct PriFaceViews {
 struct PriViewSelection {
   std::vector<std::size_t> image_views;  // scene view of each camera below
   std::vector<PinholeCamera> cameras;
-  std::vector<PriFaceViews> faces;       // per face
+  std::vector<std::uint64_t> view_keys;  // pri_view_key of each camera's view
+  std::uint64_t options_key = 0;         // pri_options_key
+  // The faces selected for: empty = every face of the mesh (faces[f] is
+  // face f); else ascending face ids, faces[j] being face face_ids[j].
+  std::vector<std::uint32_t> face_ids;
+  std::vector<PriFaceViews> faces;
+  std::uint32_t face_id(std::size_t j) const { return face_ids.empty() ? std::uint32_t(j) : face_ids[j]; }
 };
+// `faces`: ascending face ids to select for (a tile, docs/scale.md), empty =
+// every face; only their vertices' visibility is computed, against the
+// whole mesh, so each face's selection is the one of the whole-mesh call.
+// `caster`: the whole mesh's ray caster when the caller keeps one (tiles
+// of one mesh), else one is built.
 PriViewSelection select_pri_views(const Scene& scene, const PriOptions& options = {},
-                                  const ProgressCallback& progress = {});
+                                  const ProgressCallback& progress = {},
+                                  const std::vector<std::uint32_t>& faces = {},
+                                  const RayCaster* caster = nullptr);
 
 PriResult compute_pri(const Scene& scene, const PriOptions& options = {},
                       const ProgressCallback& progress = {});
+
+// Incremental PRI (docs/scale.md): the previous mesh and its PRI (with
+// evidence_key, as compute_pri returns it or read_pri_previous reads it
+// back). compute_pri then selects the views of every face of the new scene
+// and samples only the faces that have no identical face in `mesh` with the
+// same evidence key (new or moved faces, faces whose visible views,
+// occluders, cameras, images or options changed); the others keep their
+// previous values. The result equals a full computation bit for bit;
+// `recomputed` counts the faces computed.
+struct PriPrevious {
+  TriangleMesh mesh;
+  PriResult result;
+};
+PriResult compute_pri(const Scene& scene, const PriOptions& options, const ProgressCallback& progress,
+                      const PriPrevious* previous);
+
+// PRI in parts (tiles over processes, docs/scale.md): the values of the
+// faces of `selection` before the whole-mesh step; `values`' arrays are
+// indexed like `faces`. compute_pri = compute_pri_part over every face +
+// assemble_pri.
+struct PriPart {
+  std::vector<std::uint32_t> faces;  // ascending
+  PriResult values;
+};
+PriPart compute_pri_part(const Scene& scene, const PriOptions& options,
+                         const PriViewSelection& selection, const ProgressCallback& progress = {});
+// The whole result from parts that hold every face of the mesh exactly once
+// (throws Error otherwise): values placed, the offset measure's support
+// smoothing, the counts. `recomputed` = the faces of the parts computed
+// by compute_pri_part (all of them here).
+PriResult assemble_pri(const Scene& scene, const PriOptions& options, const std::vector<PriPart>& parts);
+
+// Incremental PRI's first step, given the view selection of every face of
+// the scene: the faces `previous` already holds (identical geometry and
+// evidence key), with their values, and a selection of the others alone.
+struct PriReuse {
+  PriPart reused;
+  PriViewSelection changed;  // face_ids: the faces to compute (none when empty)
+};
+PriReuse reuse_previous_pri(const Scene& scene, const PriOptions& options, const PriViewSelection& selection,
+                            const PriPrevious& previous);
+
+// Compact groups of faces for distributing PRI: the ids of `faces` (empty
+// = every face) sorted along a Morton curve of their centroids and cut into
+// `count` runs of equal size (fewer when there are fewer faces); each run
+// ascending. Deterministic.
+std::vector<std::vector<std::uint32_t>> pri_tiles(const TriangleMesh& mesh, std::size_t count,
+                                                  const std::vector<std::uint32_t>& faces = {});
+
+// The identities behind evidence keys: a view's camera (every parameter)
+// and image source (a file's path, size and modification time, or the
+// content of in-memory pixels); the options that change values (all but
+// threads); and a face's key from them and its views' keys in order.
+std::uint64_t pri_view_key(const Scene& scene, std::size_t view);
+std::uint64_t pri_options_key(const PriOptions& options);
 
 // The similarity errors of the SPEC on two sample vectors of equal length:
 // SSD = mean squared difference; NCC error = (1 - rho) / 2, or a negative

@@ -40,8 +40,12 @@ PriEvidence pri_evidence(const PriResult& result, double low_texture_below = kLo
 // undefined), "pri_views", and the evidence "pri_pairs", "pri_samples",
 // "pri_texture" (PriResult; counts 0 and texture NaN where undefined), and
 // face colours from pri_colors() over the 5th..95th percentile of the
-// observed PRI.
+// observed PRI. For incremental PRI (`meshnbv pri --previous`): the
+// evidence key in "pri_key_0/1/2" (bits 0-21, 22-42, 43-63 as exact
+// integers), and with the offset measure "pri_offset_signed",
+// "pri_offset_precision", "pri_offset_pixel" (PriResult).
 TriangleMesh mesh_with_pri(const TriangleMesh& mesh, const PriResult& result);
+inline constexpr const char* kPriKeyAttributes[3] = {"pri_key_0", "pri_key_1", "pri_key_2"};
 
 // The PRI summary as JSON text: counts, the measure and its unit,
 // percentiles, histogram, the evidence (pri_evidence), the worst faces

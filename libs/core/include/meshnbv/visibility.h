@@ -29,16 +29,29 @@ class VertexVisibility {
   VertexVisibility(const TriangleMesh& mesh, const RayCaster& caster,
                    const std::vector<PinholeCamera>& cameras, const VisibilityOptions& options = {},
                    const ProgressCallback& progress = {});
+  // The same for the vertices listed in `vertices` only (a tile of the
+  // mesh, docs/scale.md): the rays are those of the whole-mesh constructor,
+  // against the whole mesh, so each listed vertex gets the same answer;
+  // visible() of an unlisted vertex is false. Memory: one row per listed vertex.
+  VertexVisibility(const TriangleMesh& mesh, const RayCaster& caster,
+                   const std::vector<PinholeCamera>& cameras, const VisibilityOptions& options,
+                   const ProgressCallback& progress, const std::vector<std::uint32_t>& vertices);
 
   bool visible(std::size_t vertex, std::size_t view) const {
-    return bits_[vertex * num_views_ + view] != 0;
+    if (row_.empty()) return bits_[vertex * num_views_ + view] != 0;
+    const std::uint32_t r = row_[vertex];
+    return r != kNoRow && bits_[std::size_t(r) * num_views_ + view] != 0;
   }
   std::size_t num_views() const { return num_views_; }
-  std::size_t num_vertices() const { return num_views_ ? bits_.size() / num_views_ : 0; }
 
  private:
+  static constexpr std::uint32_t kNoRow = 0xffffffffu;
+  void compute(const TriangleMesh& mesh, const RayCaster& caster,
+               const std::vector<PinholeCamera>& cameras, const VisibilityOptions& options,
+               const ProgressCallback& progress, const std::vector<std::uint32_t>* vertices);
   std::size_t num_views_ = 0;
-  std::vector<std::uint8_t> bits_;  // vertex-major
+  std::vector<std::uint8_t> bits_;  // row-major: one row of num_views_ per vertex
+  std::vector<std::uint32_t> row_;  // subset: row of each vertex (kNoRow when unlisted); empty = every vertex, row = vertex
 };
 
 // Face f is visible in view i when its three vertices are visible and it

@@ -82,6 +82,10 @@ struct LoopOptions {
   std::string save_meshes = "all";  // all | last | none
   bool keep_work = false;     // keep COLMAP's per-step models
   bool snapshots = false;     // a PNG beside each saved mesh, from two dataset views
+  // How the nbv strategy computes PRI (not a user option: meshnbv-mpi
+  // distributes it over ranks); empty = compute_pri. Incremental from the
+  // previous step either way (`previous` may be null).
+  std::function<PriResult(const Scene&, const PriOptions&, const PriPrevious* previous)> pri_engine;
 
   void check() const;
 };
@@ -95,6 +99,8 @@ struct StepRecord {
   EvaluationResult metrics;
   std::string mesh_file;        // relative to out_dir; empty when not saved
   double seconds_reconstruct = 0, seconds_pri = 0, seconds_choose = 0, seconds_evaluate = 0;
+  // nbv: faces whose PRI the step computed (incremental PRI) of pri_faces.
+  std::size_t pri_recomputed = 0, pri_faces = 0;
 };
 
 struct LoopResult {

@@ -32,6 +32,10 @@ struct PlyWriteOptions {
   // the bounding-box diagonal (a mesh far from the origin, georeferenced)
   // or a coordinate is beyond float's range.
   bool double_precision = false;
+  // With double_precision false: double as soon as any coordinate is not
+  // exactly a float, so that the file gives back the very mesh (a PRI mesh
+  // that `meshnbv pri --previous` reuses face by face).
+  bool exact_coordinates = false;
   bool overwrite = true;          // false: throw if the file exists
   std::string comment = "written by MeshNBV";
 };

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "meshnbv/mesh.h"
+#include "meshnbv/pri.h"
 
 namespace meshnbv::io {
 
@@ -16,5 +17,13 @@ namespace meshnbv::io {
 // stores them at (float or double). Throws Error otherwise ("different
 // meshes"), or when the file has no quality.
 std::vector<float> read_pri_for_mesh(const std::string& path, const TriangleMesh& mesh);
+
+// A PLY written by `meshnbv pri` as the previous state of incremental PRI
+// (compute_pri with PriPrevious): its mesh and every per-face value
+// mesh_with_pri stores, the evidence keys included; the statuses follow
+// from quality and pri_views. Throws Error when an attribute is missing
+// (a PLY from an older MeshNBV, or not from meshnbv pri) or a value is not
+// what mesh_with_pri writes.
+PriPrevious read_pri_previous(const std::string& path);
 
 }  // namespace meshnbv::io

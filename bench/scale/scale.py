@@ -1,0 +1,219 @@
+#!/usr/bin/python3
+"""The measurements of bench/scale/run.sh (read it first). Arguments: the
+folder holding meshnbv and meshnbv-mpi, a scratch folder, the results folder."""
+import json
+import os
+import platform
+import re
+import shutil
+import subprocess
+import sys
+import time
+
+import numpy as np
+
+BIN, WORK, OUT = sys.argv[1:4]
+MESHNBV = os.path.join(BIN, "meshnbv")
+MPI = os.path.join(BIN, "meshnbv-mpi")
+
+
+def read_ply(path):
+    """Vertices and faces of a binary little-endian PLY written by MeshNBV."""
+    data = open(path, "rb").read()
+    end = data.index(b"end_header\n") + len(b"end_header\n")
+    header = data[:end].decode().splitlines()
+    nv = nf = 0
+    coord = "f4"
+    face_props = []
+    element = None
+    for line in header:
+        w = line.split()
+        if w[0] == "element":
+            element = w[1]
+            if element == "vertex":
+                nv = int(w[2])
+            if element == "face":
+                nf = int(w[2])
+        elif w[0] == "property" and element == "vertex" and w[-1] == "x":
+            coord = "f8" if w[1] == "double" else "f4"
+        elif w[0] == "property" and element == "face" and w[1] != "list":
+            face_props.append(("u1" if w[1] == "uchar" else "f4", w[2]))
+    at = end
+    verts = np.frombuffer(data, dtype="<" + coord, count=3 * nv, offset=at).reshape(nv, 3).astype(np.float64)
+    at += 3 * nv * np.dtype(coord).itemsize
+    fields = [("n", "u1"), ("v", "<i4", 3)] + [(name, "<" + t) for t, name in face_props]
+    faces = np.frombuffer(data, dtype=np.dtype(fields), count=nf, offset=at)
+    return verts, np.array(faces["v"], dtype=np.int32)
+
+
+def write_ply(path, verts, faces):
+    head = ("ply\nformat binary_little_endian 1.0\ncomment bench/scale\nelement vertex %d\n"
+            "property double x\nproperty double y\nproperty double z\nelement face %d\n"
+            "property list uchar int vertex_indices\nend_header\n" % (len(verts), len(faces)))
+    rec = np.zeros(len(faces), dtype=np.dtype([("n", "u1"), ("v", "<i4", 3)]))
+    rec["n"] = 3
+    rec["v"] = faces
+    with open(path, "wb") as f:
+        f.write(head.encode())
+        f.write(np.ascontiguousarray(verts, dtype="<f8").tobytes())
+        f.write(rec.tobytes())
+
+
+def split_longest_edge(verts, faces):
+    """Each triangle into two at the midpoint of its longest edge (the same surface)."""
+    a, b, c = (verts[faces[:, k]] for k in range(3))
+    lengths = np.stack([np.linalg.norm(b - a, axis=1), np.linalg.norm(c - b, axis=1),
+                        np.linalg.norm(a - c, axis=1)], axis=1)
+    e = np.argmax(lengths, axis=1)
+    # Each face rotated so that its longest edge is (r0, r1), orientation kept.
+    idx = np.arange(len(faces))
+    r = np.stack([faces[idx, e], faces[idx, (e + 1) % 3], faces[idx, (e + 2) % 3]], axis=1)
+    # One midpoint per undirected edge, shared by the two faces on it.
+    lo, hi = np.minimum(r[:, 0], r[:, 1]), np.maximum(r[:, 0], r[:, 1])
+    keys = lo.astype(np.int64) * len(verts) + hi
+    uniq, inverse = np.unique(keys, return_inverse=True)
+    mids = 0.5 * (verts[uniq // len(verts)] + verts[uniq % len(verts)])
+    m = len(verts) + inverse
+    new_faces = np.concatenate([np.stack([r[:, 0], m, r[:, 2]], 1), np.stack([m, r[:, 1], r[:, 2]], 1)])
+    return np.concatenate([verts, mids]), new_faces.astype(np.int32)
+
+
+def run(cmd, **kw):
+    t = time.perf_counter()
+    p = subprocess.run(cmd, capture_output=True, text=True, **kw)
+    wall = time.perf_counter() - t
+    if p.returncode != 0:
+        sys.exit("bench/scale: %s failed: %s" % (" ".join(cmd), p.stderr.strip()[-2000:]))
+    return wall, p.stdout, p.stderr
+
+
+def same(a, b):
+    return open(a, "rb").read() == open(b, "rb").read()
+
+
+def scene_with(src_json, dst_json, mesh, views=None):
+    s = json.load(open(src_json))
+    base = os.path.dirname(os.path.abspath(src_json))
+    s["mesh"] = os.path.abspath(mesh)
+    for v in s["views"]:
+        v["image"] = os.path.join(base, v["image"])
+    if views is not None:
+        s["views"] = s["views"][:views]
+    json.dump(s, open(dst_json, "w"))
+
+
+def main():
+    results = {"machine": {"cpus": os.cpu_count(), "platform": platform.platform()}, "runs": []}
+    city = os.path.join(WORK, "city")
+    if not os.path.exists(os.path.join(city, "scene.json")):
+        shutil.rmtree(city, ignore_errors=True)
+        run([MESHNBV, "synth", "city", "--edge-length", "0.2", "--views", "32", "--size", "1024x768",
+             "--out", city, "--quiet"])
+    big = os.path.join(WORK, "big.ply")
+    if not os.path.exists(big):
+        v, f = read_ply(os.path.join(city, "degraded.ply"))
+        v2, f2 = split_longest_edge(v, f)
+        write_ply(big, v2, f2)
+    scene = os.path.join(WORK, "big.json")
+    scene_with(os.path.join(city, "scene.json"), scene, big)
+    faces = len(read_ply(big)[1])
+    results["scene"] = {"faces": faces, "views": 32, "image": "1024x768", "from": "synthetic city, edge 0.2 m, "
+                        "each triangle split in two along its longest edge"}
+    print("scene: %d faces, 32 views" % faces, flush=True)
+
+    # 1. One process against 1, 2, 4 ranks.
+    one = os.path.join(WORK, "one.ply")
+    wall, out, err = run(["/usr/bin/time", "-f", "peak_kb %M", MESHNBV, "pri", scene, "--out", one,
+                          "--overwrite", "--quiet"])
+    peak = float(re.search(r"peak_kb (\d+)", err).group(1)) / 1024
+    results["runs"].append({"what": "meshnbv pri", "ranks": 0, "seconds": wall, "peak_mb": [peak]})
+    print("meshnbv: %.1f s, %.0f MB" % (wall, peak), flush=True)
+    for n in (1, 2, 4):
+        path = os.path.join(WORK, "np%d.ply" % n)
+        wall, out, err = run(["mpirun", "-q", "--oversubscribe", "-np", str(n), MPI, "pri", scene, "--out", path,
+                              "--overwrite", "--progress", "none"])
+        ranks = re.findall(r"rank (\d+) ([\d.]+) tiles, ([\d.]+) faces, ([\d.]+) images decoded, ([\d.]+) s, "
+                           r"peak (\d+) MB", err)
+        results["runs"].append({
+            "what": "meshnbv-mpi pri", "ranks": n, "seconds": wall, "identical": same(one, path),
+            "tiles": [float(r[1]) for r in ranks], "faces": [float(r[2]) for r in ranks],
+            "images_decoded": [float(r[3]) for r in ranks], "rank_seconds": [float(r[4]) for r in ranks],
+            "peak_mb": [float(r[5]) for r in ranks]})
+        print("np %d: %.1f s, peaks %s MB, images %s, identical %s" % (
+            n, wall, [r[5] for r in ranks], [r[3] for r in ranks], same(one, path)), flush=True)
+
+    # 2. Incremental: a local edit and an added view.
+    v, f = read_ply(big)
+    centre = v[np.argmax(v[:, 2])].copy()  # the top of the highest building
+    centre[2] = v[:, 2].max()
+    near = np.linalg.norm(v - centre, axis=1) < 4.0
+    edited = v.copy()
+    edited[near, 2] -= 0.3
+    edited_ply = os.path.join(WORK, "edited.ply")
+    write_ply(edited_ply, edited, f)
+    edited_scene = os.path.join(WORK, "edited.json")
+    scene_with(os.path.join(city, "scene.json"), edited_scene, edited_ply)
+    fewer = os.path.join(WORK, "fewer.json")
+    scene_with(os.path.join(city, "scene.json"), fewer, big, views=31)
+    fewer_ply = os.path.join(WORK, "fewer.ply")
+    run([MESHNBV, "pri", fewer, "--out", fewer_ply, "--overwrite", "--quiet"])
+    for name, target, previous in (("local edit", edited_scene, one), ("one view added", scene, fewer_ply)):
+        full = os.path.join(WORK, "full.ply")
+        inc = os.path.join(WORK, "inc.ply")
+        t_full, _, _ = run([MESHNBV, "pri", target, "--out", full, "--overwrite", "--quiet"])
+        t_inc, out, _ = run([MESHNBV, "pri", target, "--previous", previous, "--out", inc, "--overwrite",
+                             "--quiet"])
+        m = re.search(r"recomputed (\d+) of (\d+) faces", out)
+        results["runs"].append({"what": "incremental: " + name, "full_seconds": t_full,
+                                "incremental_seconds": t_inc, "recomputed": int(m.group(1)),
+                                "faces": int(m.group(2)), "identical": same(full, inc),
+                                "edited_vertices": int(near.sum()) if name == "local edit" else 0})
+        print("%s: full %.1f s, incremental %.1f s, recomputed %s of %s, identical %s" % (
+            name, t_full, t_inc, m.group(1), m.group(2), same(full, inc)), flush=True)
+
+    # 3. Cost-model points (one process, 2 threads): faces x views.
+    for views in (8, 16, 32):
+        sub = os.path.join(WORK, "views%d.json" % views)
+        scene_with(os.path.join(city, "scene.json"), sub, big, views=views)
+        summary = os.path.join(WORK, "views%d_summary.json" % views)
+        t, _, err = run(["/usr/bin/time", "-f", "peak_kb %M", MESHNBV, "pri", sub, "--out",
+                         os.path.join(WORK, "views.ply"), "--json", summary, "--overwrite", "--quiet"])
+        s = json.load(open(summary))
+        results["runs"].append({"what": "cost point", "views": views, "faces": faces, "seconds": t,
+                                "peak_mb": float(re.search(r"peak_kb (\d+)", err).group(1)) / 1024,
+                                "observed": s["faces"]["observed"], "pri_seconds": s["seconds"]})
+        print("cost point: %d views, %.1f s" % (views, t), flush=True)
+    json.dump(results, open(os.path.join(OUT, "runs.json"), "w"), indent=1)
+    table(results)
+
+
+def table(results):
+    rows = ["| run | ranks | wall s | peak MB per rank | images decoded per rank | faces per rank | identical |",
+            "|---|---|---|---|---|---|---|"]
+    for r in results["runs"]:
+        if r["what"] in ("meshnbv pri", "meshnbv-mpi pri"):
+            rows.append("| %s | %s | %.1f | %s | %s | %s | %s |" % (
+                r["what"], r["ranks"] or "-", r["seconds"], ", ".join("%.0f" % x for x in r["peak_mb"]),
+                ", ".join("%.0f" % x for x in r.get("images_decoded", [])) or "-",
+                ", ".join("%.0f" % x for x in r.get("faces", [])) or "-",
+                {True: "yes", False: "NO"}.get(r.get("identical"), "reference")))
+    rows += ["", "| incremental | full s | incremental s | recomputed faces | of | identical |", "|---|---|---|---|---|---|"]
+    for r in results["runs"]:
+        if r["what"].startswith("incremental"):
+            rows.append("| %s | %.1f | %.1f | %d (%.1f%%) | %d | %s |" % (
+                r["what"][13:], r["full_seconds"], r["incremental_seconds"], r["recomputed"],
+                100.0 * r["recomputed"] / r["faces"], r["faces"], "yes" if r["identical"] else "NO"))
+    rows += ["", "| cost point: views | faces | wall s | PRI s | peak MB |", "|---|---|---|---|---|"]
+    for r in results["runs"]:
+        if r["what"] == "cost point":
+            rows.append("| %d | %d | %.1f | %.1f | %.0f |" % (r["views"], r["faces"], r["seconds"], r["pri_seconds"],
+                                                         r["peak_mb"]))
+    s = results["scene"]
+    text = ("Scene: %d faces (%s), %d views of %s. Machine: %d cores.\n\n" % (
+        s["faces"], s["from"], s["views"], s["image"], results["machine"]["cpus"])) + "\n".join(rows) + "\n"
+    open(os.path.join(OUT, "table.md"), "w").write(text)
+    print(text)
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,391 @@
+#include "meshnbv/mpi/distributed.h"
+
+#include <mpi.h>
+#include <sys/resource.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <climits>
+#include <cstdio>
+#include <iostream>
+#include <sstream>
+#include <thread>
+
+#include "meshnbv/error.h"
+#include "meshnbv/mpi/wire.h"
+#include "meshnbv/raycaster.h"
+
+namespace meshnbv::mpi {
+
+namespace {
+
+constexpr int kTagRequest = 11, kTagTile = 12, kTagPartsSize = 13, kTagParts = 14;
+enum Job : std::int64_t { kStop = 0, kPri = 1 };
+// A worker's message to rank 0's dispatcher: its next tile, or that it failed.
+enum Request : std::int64_t { kNext = 0, kFailed = 1 };
+// At most this many faces per tile, and at least this many tiles per rank
+// (so that a rank that finishes early takes another: dynamic balance).
+constexpr std::size_t kMaxTileFaces = 262144;
+constexpr std::size_t kTilesPerRank = 4;
+// Messages of at most 1 GiB (MPI counts are int).
+constexpr std::size_t kChunk = std::size_t(1) << 30;
+
+void check(int code, const char* what) {
+  if (code != MPI_SUCCESS) {
+    char text[MPI_MAX_ERROR_STRING];
+    int length = 0;
+    MPI_Error_string(code, text, &length);
+    throw Error(std::string("MPI: ") + what + ": " + std::string(text, std::size_t(length)));
+  }
+}
+
+int comm_rank() {
+  int r = 0;
+  MPI_Comm_rank(MPI_COMM_WORLD, &r);
+  return r;
+}
+int comm_size() {
+  int s = 1;
+  MPI_Comm_size(MPI_COMM_WORLD, &s);
+  return s;
+}
+
+// Waits for a request without spinning a core: the ranks of one machine
+// share it (oversubscribed), and a rank that waits must leave it to those
+// that compute.
+void wait_idle(MPI_Request* request) {
+  int done = 0;
+  auto pause = std::chrono::microseconds(50);
+  for (;;) {
+    check(MPI_Test(request, &done, MPI_STATUS_IGNORE), "test");
+    if (done) return;
+    std::this_thread::sleep_for(pause);
+    pause = std::min(pause * 2, std::chrono::microseconds(5000));
+  }
+}
+
+// Bytes from `root` to every rank (everyone calls it).
+void broadcast(std::string* bytes, int root) {
+  std::uint64_t size = bytes->size();
+  MPI_Request r;
+  check(MPI_Ibcast(&size, 1, MPI_UINT64_T, root, MPI_COMM_WORLD, &r), "broadcast");
+  wait_idle(&r);
+  bytes->resize(std::size_t(size));
+  for (std::size_t at = 0; at < bytes->size(); at += kChunk) {
+    const int n = int(std::min(kChunk, bytes->size() - at));
+    check(MPI_Ibcast(&(*bytes)[at], n, MPI_CHAR, root, MPI_COMM_WORLD, &r), "broadcast");
+    wait_idle(&r);
+  }
+}
+
+void send_bytes(const std::string& bytes, int to) {
+  std::uint64_t size = bytes.size();
+  MPI_Request r;
+  check(MPI_Isend(&size, 1, MPI_UINT64_T, to, kTagPartsSize, MPI_COMM_WORLD, &r), "send");
+  wait_idle(&r);
+  for (std::size_t at = 0; at < bytes.size(); at += kChunk) {
+    const int n = int(std::min(kChunk, bytes.size() - at));
+    check(MPI_Isend(const_cast<char*>(bytes.data() + at), n, MPI_CHAR, to, kTagParts, MPI_COMM_WORLD, &r), "send");
+    wait_idle(&r);
+  }
+}
+
+std::string receive_bytes(int from) {
+  std::uint64_t size = 0;
+  check(MPI_Recv(&size, 1, MPI_UINT64_T, from, kTagPartsSize, MPI_COMM_WORLD, MPI_STATUS_IGNORE), "receive");
+  std::string bytes(std::size_t(size), '\0');
+  for (std::size_t at = 0; at < bytes.size(); at += kChunk) {
+    const int n = int(std::min(kChunk, bytes.size() - at));
+    check(MPI_Recv(&bytes[at], n, MPI_CHAR, from, kTagParts, MPI_COMM_WORLD, MPI_STATUS_IGNORE), "receive");
+  }
+  return bytes;
+}
+
+double peak_megabytes() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return double(u.ru_maxrss) / 1024.0;  // kilobytes on Linux
+}
+
+// What each rank did in one job, for the summary line.
+struct RankStats {
+  double tiles = 0, faces = 0, images = 0, seconds = 0, peak_mb = 0;
+};
+
+// Rank 0's side of the tile queue: hands tile indices to the other ranks
+// from the same counter rank 0 takes its own tiles from, until every other
+// rank has been told "none left" or has failed.
+class Dispatcher {
+ public:
+  Dispatcher(std::size_t tiles, int ranks) : tiles_(tiles), ranks_(ranks), busy_(std::size_t(ranks), 0) {
+    if (ranks_ > 1) thread_ = std::thread([this] { run(); });
+  }
+  ~Dispatcher() { join(); }
+  void join() {
+    if (thread_.joinable()) thread_.join();
+  }
+  // The next tile for rank 0, or -1.
+  std::int64_t take() { return next(); }
+  void finished_own() { ++finished_; }
+  void fail() { failed_ = true; }
+  std::size_t finished() const { return finished_.load(); }
+  std::string error() const { return error_; }
+
+ private:
+  std::int64_t next() {
+    if (failed_) return -1;
+    const std::size_t t = counter_.fetch_add(1);
+    return t < tiles_ ? std::int64_t(t) : -1;
+  }
+  void run() {
+    try {
+      int open = ranks_ - 1;
+      while (open > 0) {
+        std::int64_t request = 0;
+        MPI_Request r;
+        MPI_Status status;
+        check(MPI_Irecv(&request, 1, MPI_INT64_T, MPI_ANY_SOURCE, kTagRequest, MPI_COMM_WORLD, &r), "receive");
+        int done = 0;
+        auto pause = std::chrono::microseconds(50);
+        while (!done) {
+          check(MPI_Test(&r, &done, &status), "test");
+          if (!done) {
+            std::this_thread::sleep_for(pause);
+            pause = std::min(pause * 2, std::chrono::microseconds(2000));
+          }
+        }
+        const int from = status.MPI_SOURCE;
+        if (busy_[std::size_t(from)]) ++finished_;
+        if (request == kFailed) {
+          failed_ = true;
+          busy_[std::size_t(from)] = 0;
+          --open;
+          continue;
+        }
+        std::int64_t tile = next();
+        busy_[std::size_t(from)] = tile >= 0;
+        check(MPI_Send(&tile, 1, MPI_INT64_T, from, kTagTile, MPI_COMM_WORLD), "send");
+        if (tile < 0) --open;
+      }
+    } catch (const std::exception& e) {
+      error_ = e.what();
+      failed_ = true;
+    }
+  }
+
+  const std::size_t tiles_;
+  const int ranks_;
+  std::vector<char> busy_;  // per rank: holds a tile (dispatcher thread only)
+  std::atomic<std::size_t> counter_{0}, finished_{0};
+  std::atomic<bool> failed_{false};
+  std::string error_;
+  std::thread thread_;
+};
+
+// Worker side of the queue.
+std::int64_t request_tile(Request what) {
+  std::int64_t request = what, tile = -1;
+  MPI_Request r;
+  check(MPI_Isend(&request, 1, MPI_INT64_T, 0, kTagRequest, MPI_COMM_WORLD, &r), "send");
+  wait_idle(&r);
+  if (what == kFailed) return -1;
+  check(MPI_Irecv(&tile, 1, MPI_INT64_T, 0, kTagTile, MPI_COMM_WORLD, &r), "receive");
+  wait_idle(&r);
+  return tile;
+}
+
+// One PRI job on every rank, from the broadcast inputs to the gathered
+// parts (rank 0: returned; others: empty). Throws Error on every rank when
+// any rank failed, naming the first such rank and its message.
+std::vector<PriPart> run_pri_job(std::string scene_bytes, std::string options_bytes, std::string faces_bytes,
+                                 const ProgressCallback& progress, RankStats* stats_out,
+                                 std::vector<RankStats>* all_stats) {
+  const int rank = comm_rank(), ranks = comm_size();
+  broadcast(&scene_bytes, 0);
+  broadcast(&options_bytes, 0);
+  broadcast(&faces_bytes, 0);
+  const auto start = std::chrono::steady_clock::now();
+  std::string error;
+  std::vector<PriPart> parts;
+  RankStats stats;
+  std::unique_ptr<Dispatcher> dispatcher;
+  bool told = false;  // this rank has told rank 0 that it takes no more tiles
+  try {
+    const Scene scene = read_scene(scene_bytes);
+    scene_bytes.clear();
+    scene_bytes.shrink_to_fit();
+    const PriOptions options = read_pri_options(options_bytes);
+    const std::vector<std::uint32_t> faces = read_faces(faces_bytes);
+    const std::size_t n = faces.empty() ? scene.mesh.num_faces() : faces.size();
+    const std::size_t count =
+        std::max(kTilesPerRank * std::size_t(ranks), (n + kMaxTileFaces - 1) / kMaxTileFaces);
+    const std::vector<std::vector<std::uint32_t>> tiles = pri_tiles(scene.mesh, count, faces);
+    if (rank == 0) dispatcher = std::make_unique<Dispatcher>(tiles.size(), ranks);
+    const RayCaster caster(scene.mesh);
+    const std::size_t loads_before = scene.images->loads();
+    try {
+      for (;;) {
+        const std::int64_t t = rank == 0 ? dispatcher->take() : request_tile(kNext);
+        if (t < 0) {
+          told = true;
+          break;
+        }
+        const auto& tile = tiles[std::size_t(t)];
+        ProgressCallback within;
+        if (rank == 0 && progress)
+          within = [&](double fraction, const std::string& stage) {
+            if (stage != "pri") return true;
+            return progress((double(dispatcher->finished()) + fraction) / double(tiles.size()), "pri");
+          };
+        const PriViewSelection selection = select_pri_views(scene, options, within, tile, &caster);
+        parts.push_back(compute_pri_part(scene, options, selection, within));
+        stats.tiles += 1;
+        stats.faces += double(tile.size());
+        if (rank == 0) {
+          dispatcher->finished_own();
+          report_progress(progress, double(dispatcher->finished()) / double(tiles.size()), "pri");
+        }
+      }
+    } catch (...) {
+      if (rank == 0) dispatcher->fail();
+      throw;
+    }
+    stats.images = double(scene.images->loads() - loads_before);
+  } catch (const std::exception& e) {
+    error = e.what();
+    if (error.empty()) error = "unknown error";
+  }
+  // Whatever failed and where, the queue must end on every rank: rank 0
+  // answers "none left" to every request, a failed worker says so.
+  if (!error.empty()) {
+    if (rank == 0 && !dispatcher) dispatcher = std::make_unique<Dispatcher>(0, ranks);
+    if (rank == 0) dispatcher->fail();
+    if (rank != 0 && !told) request_tile(kFailed);
+  }
+  if (dispatcher) {
+    dispatcher->join();
+    if (error.empty() && !dispatcher->error().empty()) error = dispatcher->error();
+  }
+  stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  stats.peak_mb = peak_megabytes();
+
+  // Did every rank succeed? The first that failed tells its message.
+  int first_failed = error.empty() ? INT_MAX : rank, any = INT_MAX;
+  MPI_Request r;
+  check(MPI_Iallreduce(&first_failed, &any, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD, &r), "reduce");
+  wait_idle(&r);
+  if (any != INT_MAX) {
+    std::string message = error;
+    broadcast(&message, any);
+    throw Error(ranks > 1 ? "rank " + std::to_string(any) + ": " + message : message);
+  }
+  // Gather the parts and the statistics on rank 0.
+  std::vector<double> mine = {stats.tiles, stats.faces, stats.images, stats.seconds, stats.peak_mb};
+  std::vector<double> every(mine.size() * std::size_t(ranks));
+  check(MPI_Igather(mine.data(), int(mine.size()), MPI_DOUBLE, every.data(), int(mine.size()), MPI_DOUBLE, 0,
+                    MPI_COMM_WORLD, &r),
+        "gather");
+  wait_idle(&r);
+  if (rank != 0) {
+    send_bytes(write_pri_parts(parts), 0);
+    return {};
+  }
+  for (int from = 1; from < ranks; ++from)
+    for (PriPart& p : read_pri_parts(receive_bytes(from))) parts.push_back(std::move(p));
+  *stats_out = stats;
+  for (int k = 0; k < ranks; ++k) {
+    const double* v = &every[std::size_t(k) * mine.size()];
+    all_stats->push_back({v[0], v[1], v[2], v[3], v[4]});
+  }
+  return parts;
+}
+
+void broadcast_job(Job job) {
+  std::int64_t j = job;
+  MPI_Request r;
+  check(MPI_Ibcast(&j, 1, MPI_INT64_T, 0, MPI_COMM_WORLD, &r), "broadcast");
+  wait_idle(&r);
+}
+
+}  // namespace
+
+Session::Session(int* argc, char*** argv) {
+  int provided = 0;
+  check(MPI_Init_thread(argc, argv, MPI_THREAD_SERIALIZED, &provided), "init");
+  MPI_Comm_set_errhandler(MPI_COMM_WORLD, MPI_ERRORS_RETURN);
+  rank_ = comm_rank();
+  size_ = comm_size();
+  if (provided < MPI_THREAD_SERIALIZED) {
+    MPI_Finalize();
+    throw Error("this MPI library does not support MPI_THREAD_SERIALIZED, which meshnbv-mpi needs");
+  }
+}
+
+Session::~Session() { MPI_Finalize(); }
+
+PriResult distributed_pri(const Scene& scene, const PriOptions& options, const ProgressCallback& progress,
+                          const PriPrevious* previous, bool quiet) {
+  const auto start = std::chrono::steady_clock::now();
+  std::vector<PriPart> parts;
+  std::vector<std::uint32_t> faces;  // empty = all
+  if (previous) {
+    // The reuse is decided here, on the whole mesh's view selection; the
+    // ranks compute the changed faces.
+    const PriViewSelection selection = select_pri_views(scene, options, progress);
+    PriReuse reuse = reuse_previous_pri(scene, options, selection, *previous);
+    parts.push_back(std::move(reuse.reused));
+    faces = std::move(reuse.changed.face_ids);
+    if (faces.empty()) {
+      PriResult result = assemble_pri(scene, options, parts);
+      result.views_used = selection.image_views.size();
+      result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      return result;
+    }
+  } else {
+    options.check();
+  }
+  // The readers' checks on rank 0 before any rank starts.
+  scene.mesh.validate(scene.mesh_path);
+  broadcast_job(kPri);
+  RankStats own;
+  std::vector<RankStats> stats;
+  std::vector<PriPart> computed =
+      run_pri_job(write_scene(scene), write_pri_options(options), write_faces(faces), progress, &own, &stats);
+  for (PriPart& p : computed) parts.push_back(std::move(p));
+  PriResult result = assemble_pri(scene, options, parts);
+  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  report_progress(progress, 1.0, "pri");
+  if (!quiet) {
+    std::ostringstream line;
+    line << "meshnbv-mpi: PRI on " << stats.size() << " rank" << (stats.size() > 1 ? "s" : "") << ":";
+    for (std::size_t k = 0; k < stats.size(); ++k)
+      line << (k ? ";" : "") << " rank " << k << " " << stats[k].tiles << " tiles, " << stats[k].faces
+           << " faces, " << stats[k].images << " images decoded, " << std::lround(stats[k].seconds * 100) / 100.0
+           << " s, peak " << std::lround(stats[k].peak_mb) << " MB";
+    std::cerr << line.str() << std::endl;
+  }
+  return result;
+}
+
+int serve_jobs() {
+  for (;;) {
+    std::int64_t job = kStop;
+    MPI_Request r;
+    check(MPI_Ibcast(&job, 1, MPI_INT64_T, 0, MPI_COMM_WORLD, &r), "broadcast");
+    wait_idle(&r);
+    if (job == kStop) return 0;
+    if (job != kPri) throw Error("unknown job " + std::to_string(job) + " from rank 0");
+    RankStats own;
+    std::vector<RankStats> stats;
+    try {
+      run_pri_job({}, {}, {}, {}, &own, &stats);
+    } catch (const Error&) {
+      // Rank 0 reports it; this rank waits for the next job.
+    }
+  }
+}
+
+void stop_workers() { broadcast_job(kStop); }
+
+}  // namespace meshnbv::mpi
