@@ -20,6 +20,11 @@ PriEngine& engine() {
   return e;
 }
 
+CandidateScorer& scorer() {
+  static CandidateScorer s;
+  return s;
+}
+
 std::string& program_name() {
   static std::string name = "meshnbv";
   return name;
@@ -49,6 +54,8 @@ int fail(const std::string& message) {
 }  // namespace
 
 void set_pri_engine(PriEngine e) { engine() = std::move(e); }
+void set_candidate_scorer(CandidateScorer s) { scorer() = std::move(s); }
+const CandidateScorer& candidate_scorer() { return scorer(); }
 
 PriResult scene_pri(const Scene& scene, const PriOptions& options, const ProgressCallback& progress,
                     const PriPrevious* previous) {

@@ -188,6 +188,7 @@ void finish_loop_options(LoopArgs* a) {
   o.pri_engine = [](const Scene& scene, const PriOptions& pri, const PriPrevious* previous) {
     return scene_pri(scene, pri, {}, previous);
   };
+  o.candidate_scorer = candidate_scorer();
   o.check();
   o.evaluation.thresholds = o.thresholds.empty() ? o.evaluation.thresholds : o.thresholds;
   o.evaluation.check();

@@ -72,7 +72,7 @@ void add_run_command(CLI::App& app) {
     ProgressBar bar(a->progress.silent(), a->progress.json());
     const PriResult pri = scene_pri(scene, a->pri, bar.callback());
     lap("PRI");
-    const SuggestResult sug = suggest_views(scene, pri.pri, so, {}, bar.callback());
+    const SuggestResult sug = suggest_views(scene, pri.pri, so, {}, bar.callback(), candidate_scorer());
     lap("suggestions");
 
     const std::string suggestions_text =

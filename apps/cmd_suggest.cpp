@@ -76,7 +76,7 @@ void add_suggest_command(CLI::App& app) {
       pri = scene_pri(scene, a->pri, bar.callback()).pri;
       pri_from = "computed (" + measure_name(a->pri.measure) + ")";
     }
-    const SuggestResult r = suggest_views(scene, pri, o, given, bar.callback());
+    const SuggestResult r = suggest_views(scene, pri, o, given, bar.callback(), candidate_scorer());
     bar.finish();
     io::write_atomically(a->out, [&](std::ostream& out) {
       out << suggestions_json(r, o, {a->input.path, pri_from});

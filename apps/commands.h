@@ -54,6 +54,10 @@ using PriEngine = std::function<PriResult(const Scene&, const PriOptions&, const
 void set_pri_engine(PriEngine engine);
 PriResult scene_pri(const Scene& scene, const PriOptions& options, const ProgressCallback& progress,
                     const PriPrevious* previous = nullptr);
+// How the commands score candidate poses (suggest_views): empty = here,
+// or the scorer set before run_main (meshnbv-mpi: over its ranks).
+void set_candidate_scorer(CandidateScorer scorer);
+const CandidateScorer& candidate_scorer();
 
 // Subcommands run their work in a callback and throw meshnbv::Error on failure.
 void add_info_command(CLI::App& app);

@@ -1,5 +1,5 @@
 // The messages between meshnbv-mpi's ranks (libs/mpi, wire.h): scene, PRI
-// options, faces and PRI parts. Each reader accepts its own kind only and
+// options, faces, PRI parts, candidate scoring jobs and their energies. Each reader accepts its own kind only and
 // either returns what its writer gives back byte for byte, or throws Error.
 #include "fuzz_target.h"
 #include "meshnbv/error.h"
@@ -27,6 +27,16 @@ MESHNBV_FUZZ_TARGET(wire) {
   }
   try {
     FUZZ_CHECK(mpi::write_pri_parts(mpi::read_pri_parts(bytes)) == bytes);
+    ++accepted;
+  } catch (const Error&) {
+  }
+  try {
+    FUZZ_CHECK(mpi::write_score_job(mpi::read_score_job(bytes)) == bytes);
+    ++accepted;
+  } catch (const Error&) {
+  }
+  try {
+    FUZZ_CHECK(mpi::write_energies(mpi::read_energies(bytes)) == bytes);
     ++accepted;
   } catch (const Error&) {
   }

@@ -327,6 +327,20 @@ def wire_seeds():
             vec("f", [0.25, float("nan")]) + vec("f", [2, 0]) + vec("f", [0.01, 0]) + struct.pack("<3Q", 2, 2, 1))
     empty = b"".join(vec(f, []) for f in "IfiBiifQfff") + struct.pack("<3Q", 2, 0, 0)
     write("wire", "parts.bin", struct.pack("<I", 0x4D4E5031) + struct.pack("<Q", 2) + part + empty)
+    points = lambda pts: vec("d", [c for p in pts for c in p])
+    score = (struct.pack("<I", 0x4D4E4A31) + struct.pack("<QB", 77, 1) + vec("d", xyz) +
+             struct.pack("<Q", len(tris)) + b"".join(struct.pack("<3i", *t) for t in tris) +
+             vec("i", [2, 3]) + vec("i", [1, 2, 3, 4]) + points([(0, 0, 1)] * 4) + struct.pack("<3d", 0.5, 0.7, 0.5) +
+             struct.pack("<3d", 0, 0.6, 0.8) + points([(0.5, 0.5, -3), (1.5, 0.5, -3)]) +
+             struct.pack("<4d", 0.6, 1.6, 2.1, 0.6) + struct.pack("<6d", -10, 0.33, 55, 15, 1e-4, 1e-6) +
+             struct.pack("<Q", 2) + camera(50, 0) + camera(40, 1))
+    write("wire", "score.bin", score)
+    write("wire", "score_same_mesh.bin", struct.pack("<I", 0x4D4E4A31) + struct.pack("<QB", 77, 0) +
+          vec("i", []) + vec("i", []) + points([]) + struct.pack("<6d", 0, 0, 0, 0, 0, 1) + points([]) +
+          struct.pack("<4d", 0.6, 1.6, 2.1, 0.6) + struct.pack("<6d", -10, 0.33, 55, 15, 1e-4, 1e-6) +
+          struct.pack("<Q", 0))
+    write("wire", "energies.bin", struct.pack("<I", 0x4D4E4531) + struct.pack("<Q", 2) +
+          struct.pack("<10d", 1, 2, 3, 4, 10, -10, 0, 0, 0, -10))
 
 
 def main():

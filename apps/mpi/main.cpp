@@ -34,6 +34,7 @@ int main(int argc, char** argv) {
                                           const meshnbv::PriPrevious* previous) {
       return meshnbv::mpi::distributed_pri(scene, options, progress, previous, silent);
     });
+    meshnbv::cli::set_candidate_scorer(meshnbv::mpi::distributed_scores);
     const int code = meshnbv::cli::run_main(argc, argv, "meshnbv-mpi");
     meshnbv::mpi::stop_workers();
     return code;

@@ -130,15 +130,19 @@ def main():
     print("meshnbv: %.1f s, %.0f MB" % (wall, peak), flush=True)
     for n in (1, 2, 4):
         path = os.path.join(WORK, "np%d.ply" % n)
-        wall, out, err = run(["mpirun", "-q", "--oversubscribe", "-np", str(n), MPI, "pri", scene, "--out", path,
-                              "--overwrite", "--progress", "none"])
+        # --bind-to none: Open MPI binds each rank to one core by default
+        # (np <= 2), which would leave TBB one thread.
+        wall, out, err = run(["mpirun", "-q", "--oversubscribe", "--bind-to", "none", "-np", str(n), MPI, "pri",
+                              scene, "--out", path, "--overwrite", "--progress", "json"])
         ranks = re.findall(r"rank (\d+) ([\d.]+) tiles, ([\d.]+) faces, ([\d.]+) images decoded, ([\d.]+) s, "
-                           r"peak (\d+) MB", err)
+                           r"peak (\d+) MB, (\d+) threads", err)
+        if len(ranks) != n:
+            sys.exit("bench/scale: no per-rank line for %d ranks in: %s" % (n, err[-2000:]))
         results["runs"].append({
             "what": "meshnbv-mpi pri", "ranks": n, "seconds": wall, "identical": same(one, path),
             "tiles": [float(r[1]) for r in ranks], "faces": [float(r[2]) for r in ranks],
             "images_decoded": [float(r[3]) for r in ranks], "rank_seconds": [float(r[4]) for r in ranks],
-            "peak_mb": [float(r[5]) for r in ranks]})
+            "peak_mb": [float(r[5]) for r in ranks], "threads": [int(r[6]) for r in ranks]})
         print("np %d: %.1f s, peaks %s MB, images %s, identical %s" % (
             n, wall, [r[5] for r in ranks], [r[3] for r in ranks], same(one, path)), flush=True)
 

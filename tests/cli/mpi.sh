@@ -17,7 +17,7 @@ for n in 1 2 4; do
 done
 # The per-rank line: every rank took tiles and decoded only its images.
 err=$(run_mpi 2 pri "$S" --out "$TMP/np2b.ply" --progress json 2>&1 >/dev/null) || fail "np 2 json: $err"
-grep -q '^meshnbv-mpi: PRI on 2 ranks: rank 0 [1-9][0-9]* tiles, .*; rank 1 [1-9][0-9]* tiles' <<<"$err" ||
+grep -q '^meshnbv-mpi: PRI on 2 ranks: rank 0 [1-9][0-9]* tiles, .* threads; rank 1 [1-9][0-9]* tiles, .* threads$' <<<"$err" ||
   fail "per-rank line: $err"
 grep -q '"stage": "pri"' <<<"$err" || fail "no progress lines: $err"
 # Other measures and options travel to the ranks.
@@ -60,6 +60,23 @@ for s in (a, b):
     s.pop("seconds", None)  # the time taken
 assert a == b, "suggestions differ"
 PY
+
+# suggest: the candidates scored on 3 ranks, the same suggestions (sampled,
+# refined, given).
+for mode in sampled refined given; do
+  args=("$S" --candidates $mode)
+  # given: the 12 views of the sample are the candidates of its first 11.
+  [ $mode = given ] && args=("$TMP/eleven.json" --candidates given --candidates-from "$S")
+  "$MESHNBV" suggest "${args[@]}" --out "$TMP/s1_$mode.json" --quiet >/dev/null || fail "suggest $mode"
+  run_mpi 3 suggest "${args[@]}" --out "$TMP/s3_$mode.json" --quiet >/dev/null || fail "mpi suggest $mode"
+  /usr/bin/python3 - "$TMP/s1_$mode.json" "$TMP/s3_$mode.json" <<'PY' || fail "suggest $mode: suggestions differ"
+import json, sys
+a, b = (json.load(open(p)) for p in sys.argv[1:])
+for s in (a, b):
+    s.pop("seconds", None)
+assert a == b and a["suggestions"], "suggestions differ"
+PY
+done
 
 # A rank that cannot decode an image: one line naming the rank, no output.
 cp -r "$ROOT/sample_projects/building" "$TMP/bad"

@@ -99,3 +99,34 @@ TEST(Wire, TruncatedOrForeignMessagesAreErrors) {
   broken.mesh.faces[0][0] = 100000;
   EXPECT_THROW(mpi::read_scene(mpi::write_scene(broken)), Error);
 }
+
+TEST(Wire, ScoreJobRoundTrip) {
+  const Scene s = rendered(3);
+  mpi::ScoreJob job;
+  job.mesh_key = mpi::mesh_key(s.mesh);
+  job.has_mesh = true;
+  job.mesh = s.mesh;
+  std::vector<float> pri(s.mesh.num_faces());
+  for (std::size_t f = 0; f < pri.size(); ++f) pri[f] = float(f % 17);
+  job.region = worst_region(s.mesh, pri, 10);
+  job.existing = {s.views[0].camera.center(), s.views[1].camera.center()};
+  job.options.weights[2] = 3.5;
+  for (const View& v : s.views) job.cameras.push_back(v.camera);
+  const std::string bytes = mpi::write_score_job(job);
+  const mpi::ScoreJob r = mpi::read_score_job(bytes);
+  EXPECT_EQ(mpi::write_score_job(r), bytes);
+  EXPECT_EQ(r.mesh.vertices, s.mesh.vertices);
+  EXPECT_EQ(r.region.faces, job.region.faces);
+  EXPECT_EQ(r.options.weights[2], 3.5);
+  EXPECT_EQ(mpi::mesh_key(r.mesh), job.mesh_key);
+  TriangleMesh moved = s.mesh;
+  moved.vertices[0].x() += 1e-12;
+  EXPECT_NE(mpi::mesh_key(moved), job.mesh_key);
+  const std::vector<EnergyTerms> e = {{1, 2, 3, 4, 10}, {-10, 0, 0, 0, -10}};
+  const std::vector<EnergyTerms> back = mpi::read_energies(mpi::write_energies(e));
+  ASSERT_EQ(back.size(), 2u);
+  EXPECT_EQ(back[0].total, 10);
+  EXPECT_EQ(back[1].occlusion, -10);
+  EXPECT_THROW(mpi::read_energies(bytes), Error);
+  for (std::size_t n = 0; n < bytes.size(); n += 1013) EXPECT_THROW(mpi::read_score_job(bytes.substr(0, n)), Error);
+}

@@ -50,12 +50,25 @@ struct Scored {
 
 bool ranked_before(const Scored& a, const Scored& b) { return a.energy.total > b.energy.total; }
 
-// Energies in parallel; stable order: best energy first, ties by input order.
-std::vector<Scored> score(const std::vector<Scored>& in, const EnergyEvaluator& e) {
+// Energies in parallel (or by the caller's scorer); stable order: best
+// energy first, ties by input order.
+std::vector<Scored> score(const std::vector<Scored>& in, const EnergyEvaluator& e, const TriangleMesh& mesh,
+                          const EnergyOptions& options, const CandidateScorer& scorer) {
   std::vector<Scored> out = in;
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, out.size()), [&](const auto& r) {
-    for (std::size_t i = r.begin(); i < r.end(); ++i) out[i].energy = e.evaluate(out[i].camera);
-  });
+  if (scorer) {
+    std::vector<PinholeCamera> cameras;
+    cameras.reserve(out.size());
+    for (const Scored& s : out) cameras.push_back(s.camera);
+    const std::vector<EnergyTerms> energies = scorer(mesh, e, options, cameras);
+    if (energies.size() != out.size())
+      throw Error("the candidate scorer returned " + std::to_string(energies.size()) + " energies for " +
+                  std::to_string(out.size()) + " candidates");
+    for (std::size_t i = 0; i < out.size(); ++i) out[i].energy = energies[i];
+  } else {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, out.size()), [&](const auto& r) {
+      for (std::size_t i = r.begin(); i < r.end(); ++i) out[i].energy = e.evaluate(out[i].camera);
+    });
+  }
   std::stable_sort(out.begin(), out.end(), ranked_before);
   return out;
 }
@@ -177,7 +190,7 @@ bool next_region(const PlannerContext& ctx, const std::vector<float>& pri, std::
 
 SuggestResult suggest_views(const Scene& scene, const std::vector<float>& pri,
                             const SuggestOptions& o, const std::vector<View>& given,
-                            const ProgressCallback& progress) {
+                            const ProgressCallback& progress, const CandidateScorer& scorer) {
   o.check();
   const auto start = std::chrono::steady_clock::now();
   const TriangleMesh& mesh = scene.mesh;
@@ -209,8 +222,9 @@ SuggestResult suggest_views(const Scene& scene, const std::vector<float>& pri,
       const EnergyEvaluator energy(mesh, caster, region, existing, o.energy);
       std::vector<Scored> scored =
           o.mode == CandidateMode::Given
-              ? score(pool, energy)
-              : score(sampled_candidates(ctx, region, viewing_distance, pick, &result), energy);
+              ? score(pool, energy, mesh, o.energy, scorer)
+              : score(sampled_candidates(ctx, region, viewing_distance, pick, &result), energy, mesh, o.energy,
+                      scorer);
       result.candidates_evaluated += scored.size();
       if (o.mode == CandidateMode::Refined) add_refined(ctx, energy, &scored, &result.candidates_evaluated);
       if (pick == 0) {

@@ -573,7 +573,7 @@ void choose_by_nbv(const LoopContext& ctx, const Selection& sel, const TriangleM
       given.push_back(v);
     }
   }
-  const SuggestResult s = suggest_views(scene, pri.pri, so, given);
+  const SuggestResult s = suggest_views(scene, pri.pri, so, given, {}, ctx.options.candidate_scorer);
   if (s.suggestions.empty()) return;
   if (ctx.continuous) {
     choice->take_new_pose = true;
@@ -676,7 +676,7 @@ LoopResult run_loop(const Dataset& dataset, const LoopOptions& options,
   const LoopContext ctx{dataset, options, out, ws, continuous,
                         options.max_views > 0 ? std::size_t(options.max_views) : n};
   StrategyState state{convergence_point(dataset_cams), std::mt19937_64(options.seed),
-                      std::make_shared<ImageCache>(), nullptr};
+                      std::make_shared<ImageCache>(), nullptr, nullptr};
   if (continuous) {
     state.truth = std::make_unique<RayCaster>(dataset.truth);
     fs::create_directories(out / "images");

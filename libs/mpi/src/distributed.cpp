@@ -16,12 +16,16 @@
 #include "meshnbv/mpi/wire.h"
 #include "meshnbv/raycaster.h"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
 namespace meshnbv::mpi {
 
 namespace {
 
 constexpr int kTagRequest = 11, kTagTile = 12, kTagPartsSize = 13, kTagParts = 14;
-enum Job : std::int64_t { kStop = 0, kPri = 1 };
+enum Job : std::int64_t { kStop = 0, kPri = 1, kScore = 2 };
 // A worker's message to rank 0's dispatcher: its next tile, or that it failed.
 enum Request : std::int64_t { kNext = 0, kFailed = 1 };
 // At most this many faces per tile, and at least this many tiles per rank
@@ -110,7 +114,7 @@ double peak_megabytes() {
 
 // What each rank did in one job, for the summary line.
 struct RankStats {
-  double tiles = 0, faces = 0, images = 0, seconds = 0, peak_mb = 0;
+  double tiles = 0, faces = 0, images = 0, seconds = 0, peak_mb = 0, threads = 0;
 };
 
 // Rank 0's side of the tile queue: hands tile indices to the other ranks
@@ -195,6 +199,79 @@ std::int64_t request_tile(Request what) {
   return tile;
 }
 
+// Every rank: throws Error on every rank when any rank's `error` is not
+// empty, with the first such rank's message.
+void agree(const std::string& error) {
+  const int rank = comm_rank(), ranks = comm_size();
+  int first_failed = error.empty() ? INT_MAX : rank, any = INT_MAX;
+  MPI_Request r;
+  check(MPI_Iallreduce(&first_failed, &any, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD, &r), "reduce");
+  wait_idle(&r);
+  if (any == INT_MAX) return;
+  std::string message = error;
+  broadcast(&message, any);
+  throw Error(ranks > 1 ? "rank " + std::to_string(any) + ": " + message : message);
+}
+
+// The mesh a scoring job refers to, kept between jobs (rank 0: the key the
+// other ranks hold).
+struct ScoringMesh {
+  std::uint64_t key = 0;
+  std::unique_ptr<TriangleMesh> mesh;
+  std::unique_ptr<RayCaster> caster;
+};
+ScoringMesh& scoring_mesh() {
+  static ScoringMesh m;
+  return m;
+}
+
+std::vector<EnergyTerms> evaluate_share(const EnergyEvaluator& energy, const std::vector<PinholeCamera>& cameras,
+                                        std::size_t begin, std::size_t end) {
+  std::vector<EnergyTerms> out(end - begin);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(begin, end), [&](const auto& r) {
+    for (std::size_t i = r.begin(); i < r.end(); ++i) out[i - begin] = energy.evaluate(cameras[i]);
+  });
+  return out;
+}
+
+std::pair<std::size_t, std::size_t> share(std::size_t n, int rank, int ranks) {
+  return {n * std::size_t(rank) / std::size_t(ranks), n * std::size_t(rank + 1) / std::size_t(ranks)};
+}
+
+// A worker's side of one scoring job.
+void serve_score_job() {
+  const int rank = comm_rank(), ranks = comm_size();
+  std::string bytes;
+  broadcast(&bytes, 0);
+  std::string error, energies;
+  try {
+    mpi::ScoreJob job = read_score_job(bytes);
+    ScoringMesh& held = scoring_mesh();
+    if (job.has_mesh) {
+      held.key = 0;
+      held.caster.reset();
+      held.mesh = std::make_unique<TriangleMesh>(std::move(job.mesh));
+      held.caster = std::make_unique<RayCaster>(*held.mesh);
+      held.key = job.mesh_key;
+    } else if (!held.mesh || held.key != job.mesh_key) {
+      throw Error("no mesh for the candidate scoring job (not sent)");
+    }
+    const std::size_t V = held.mesh->num_vertices(), F = held.mesh->num_faces();
+    for (int v : job.region.vertices)
+      if (v < 0 || std::size_t(v) >= V) throw Error("a region vertex is not in the mesh");
+    for (int f : job.region.faces)
+      if (f < 0 || std::size_t(f) >= F) throw Error("a region face is not in the mesh");
+    const EnergyEvaluator energy(*held.mesh, *held.caster, job.region, job.existing, job.options);
+    const auto [begin, end] = share(job.cameras.size(), rank, ranks);
+    energies = write_energies(evaluate_share(energy, job.cameras, begin, end));
+  } catch (const std::exception& e) {
+    error = e.what();
+    if (error.empty()) error = "unknown error";
+  }
+  agree(error);
+  send_bytes(energies, 0);
+}
+
 // One PRI job on every rank, from the broadcast inputs to the gathered
 // parts (rank 0: returned; others: empty). Throws Error on every rank when
 // any rank failed, naming the first such rank and its message.
@@ -269,19 +346,13 @@ std::vector<PriPart> run_pri_job(std::string scene_bytes, std::string options_by
   }
   stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   stats.peak_mb = peak_megabytes();
+  stats.threads = double(tbb::this_task_arena::max_concurrency());
 
   // Did every rank succeed? The first that failed tells its message.
-  int first_failed = error.empty() ? INT_MAX : rank, any = INT_MAX;
+  agree(error);
   MPI_Request r;
-  check(MPI_Iallreduce(&first_failed, &any, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD, &r), "reduce");
-  wait_idle(&r);
-  if (any != INT_MAX) {
-    std::string message = error;
-    broadcast(&message, any);
-    throw Error(ranks > 1 ? "rank " + std::to_string(any) + ": " + message : message);
-  }
   // Gather the parts and the statistics on rank 0.
-  std::vector<double> mine = {stats.tiles, stats.faces, stats.images, stats.seconds, stats.peak_mb};
+  std::vector<double> mine = {stats.tiles, stats.faces, stats.images, stats.seconds, stats.peak_mb, stats.threads};
   std::vector<double> every(mine.size() * std::size_t(ranks));
   check(MPI_Igather(mine.data(), int(mine.size()), MPI_DOUBLE, every.data(), int(mine.size()), MPI_DOUBLE, 0,
                     MPI_COMM_WORLD, &r),
@@ -296,7 +367,7 @@ std::vector<PriPart> run_pri_job(std::string scene_bytes, std::string options_by
   *stats_out = stats;
   for (int k = 0; k < ranks; ++k) {
     const double* v = &every[std::size_t(k) * mine.size()];
-    all_stats->push_back({v[0], v[1], v[2], v[3], v[4]});
+    all_stats->push_back({v[0], v[1], v[2], v[3], v[4], v[5]});
   }
   return parts;
 }
@@ -362,7 +433,7 @@ PriResult distributed_pri(const Scene& scene, const PriOptions& options, const P
     for (std::size_t k = 0; k < stats.size(); ++k)
       line << (k ? ";" : "") << " rank " << k << " " << stats[k].tiles << " tiles, " << stats[k].faces
            << " faces, " << stats[k].images << " images decoded, " << std::lround(stats[k].seconds * 100) / 100.0
-           << " s, peak " << std::lround(stats[k].peak_mb) << " MB";
+           << " s, peak " << std::lround(stats[k].peak_mb) << " MB, " << stats[k].threads << " threads";
     std::cerr << line.str() << std::endl;
   }
   return result;
@@ -375,6 +446,13 @@ int serve_jobs() {
     check(MPI_Ibcast(&job, 1, MPI_INT64_T, 0, MPI_COMM_WORLD, &r), "broadcast");
     wait_idle(&r);
     if (job == kStop) return 0;
+    if (job == kScore) {
+      try {
+        serve_score_job();
+      } catch (const Error&) {
+      }
+      continue;
+    }
     if (job != kPri) throw Error("unknown job " + std::to_string(job) + " from rank 0");
     RankStats own;
     std::vector<RankStats> stats;
@@ -384,6 +462,43 @@ int serve_jobs() {
       // Rank 0 reports it; this rank waits for the next job.
     }
   }
+}
+
+std::vector<EnergyTerms> distributed_scores(const TriangleMesh& mesh, const EnergyEvaluator& energy,
+                                            const EnergyOptions& options,
+                                            const std::vector<PinholeCamera>& candidates) {
+  const int ranks = comm_size();
+  if (ranks == 1) return evaluate_share(energy, candidates, 0, candidates.size());
+  ScoreJob job;
+  job.mesh_key = mesh_key(mesh);
+  ScoringMesh& sent = scoring_mesh();
+  job.has_mesh = sent.key != job.mesh_key;
+  if (job.has_mesh) job.mesh = mesh;  // copied: the message needs its vertices
+  job.region = energy.region();
+  job.existing = energy.existing();
+  job.options = options;
+  job.cameras = candidates;
+  std::string bytes = write_score_job(job);
+  broadcast_job(kScore);
+  sent.key = 0;  // until every rank has it
+  broadcast(&bytes, 0);
+  std::string error;
+  std::vector<EnergyTerms> out;
+  try {
+    const auto [begin, end] = share(candidates.size(), 0, ranks);
+    out = evaluate_share(energy, candidates, begin, end);
+  } catch (const std::exception& e) {
+    error = e.what();
+  }
+  agree(error);
+  sent.key = job.mesh_key;
+  for (int from = 1; from < ranks; ++from) {
+    const std::vector<EnergyTerms> part = read_energies(receive_bytes(from));
+    out.insert(out.end(), part.begin(), part.end());
+  }
+  if (out.size() != candidates.size()) throw Error("the ranks scored " + std::to_string(out.size()) + " of " +
+                                                   std::to_string(candidates.size()) + " candidates");
+  return out;
 }
 
 void stop_workers() { broadcast_job(kStop); }

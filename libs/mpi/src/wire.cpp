@@ -12,7 +12,8 @@ namespace {
 
 // Each message starts with its kind, so that one kind of bytes is never
 // read as another.
-constexpr std::uint32_t kScene = 0x4d4e5331, kOptions = 0x4d4e4f31, kFaces = 0x4d4e4631, kParts = 0x4d4e5031;
+constexpr std::uint32_t kScene = 0x4d4e5331, kOptions = 0x4d4e4f31, kFaces = 0x4d4e4631, kParts = 0x4d4e5031,
+                        kScore = 0x4d4e4a31, kEnergies = 0x4d4e4531;
 
 class Writer {
  public:
@@ -126,14 +127,35 @@ PinholeCamera get_camera(Reader& r) {
   return c;
 }
 
+void put_points(Writer& w, const std::vector<Vec3>& points) {
+  std::vector<double> xyz;
+  xyz.reserve(3 * points.size());
+  for (const Vec3& p : points) xyz.insert(xyz.end(), {p.x(), p.y(), p.z()});
+  w.put_vector(xyz);
+}
+
+std::vector<Vec3> get_points(Reader& r) {
+  const std::vector<double> xyz = r.get_vector<double>();
+  if (xyz.size() % 3) r.fail("coordinates are not triples");
+  std::vector<Vec3> points(xyz.size() / 3);
+  for (std::size_t v = 0; v < points.size(); ++v) points[v] = Vec3(xyz[3 * v], xyz[3 * v + 1], xyz[3 * v + 2]);
+  return points;
+}
+
+Vec3 get_vec3(Reader& r) {
+  const double x = r.get_finite(), y = r.get_finite(), z = r.get_finite();
+  return Vec3(x, y, z);
+}
+
+void put_vec3(Writer& w, const Vec3& p) {
+  for (int k = 0; k < 3; ++k) w.put(p[k]);
+}
+
 }  // namespace
 
 std::string write_scene(const Scene& scene) {
   Writer w(kScene);
-  std::vector<double> xyz;
-  xyz.reserve(3 * scene.mesh.vertices.size());
-  for (const Vec3& p : scene.mesh.vertices) xyz.insert(xyz.end(), {p.x(), p.y(), p.z()});
-  w.put_vector(xyz);
+  put_points(w, scene.mesh.vertices);
   w.put_vector(scene.mesh.faces);
   w.put_string(scene.mesh_path);
   w.put_string(scene.source);
@@ -159,11 +181,7 @@ Scene read_scene(const std::string& bytes) {
   static_assert(sizeof(Face) == 3 * sizeof(int));
   Reader r(bytes, kScene, "scene");
   Scene s;
-  const std::vector<double> xyz = r.get_vector<double>();
-  if (xyz.size() % 3) r.fail("the vertex coordinates are not triples");
-  s.mesh.vertices.resize(xyz.size() / 3);
-  for (std::size_t v = 0; v < s.mesh.vertices.size(); ++v)
-    s.mesh.vertices[v] = Vec3(xyz[3 * v], xyz[3 * v + 1], xyz[3 * v + 2]);
+  s.mesh.vertices = get_points(r);
   s.mesh.faces = r.get_vector<Face>();
   s.mesh_path = r.get_string();
   s.source = r.get_string();
@@ -311,6 +329,102 @@ std::vector<PriPart> read_pri_parts(const std::string& bytes) {
   }
   r.finish();
   return parts;
+}
+
+std::uint64_t mesh_key(const TriangleMesh& mesh) {
+  std::uint64_t h = 0x6d6573686b6579ull ^ (std::uint64_t(mesh.vertices.size()) << 32) ^ mesh.faces.size();
+  auto mix = [](std::uint64_t x) {
+    x ^= x >> 33;
+    x *= 0xff51afd7ed558ccdull;
+    x ^= x >> 33;
+    x *= 0xc4ceb9fe1a85ec53ull;
+    return x ^ (x >> 33);
+  };
+  for (const Vec3& p : mesh.vertices)
+    for (int k = 0; k < 3; ++k) {
+      std::uint64_t bits;
+      const double x = p[k];
+      std::memcpy(&bits, &x, 8);
+      h = mix(h ^ bits) + 0x9e3779b97f4a7c15ull;
+    }
+  for (const Face& f : mesh.faces)
+    h = mix(h ^ (std::uint64_t(std::uint32_t(f[0])) | std::uint64_t(std::uint32_t(f[1])) << 32)) ^ std::uint32_t(f[2]);
+  return h;
+}
+
+std::string write_score_job(const ScoreJob& job) {
+  static_assert(sizeof(EnergyOptions) == 4 * 8 + 4 * 8 + 2 * 8, "EnergyOptions changed: update wire.cpp");
+  Writer w(kScore);
+  w.put(job.mesh_key);
+  w.put(std::uint8_t(job.has_mesh));
+  if (job.has_mesh) {
+    put_points(w, job.mesh.vertices);
+    w.put_vector(job.mesh.faces);
+  }
+  w.put_vector(job.region.faces);
+  w.put_vector(job.region.vertices);
+  put_points(w, job.region.normals);
+  put_vec3(w, job.region.centroid);
+  put_vec3(w, job.region.mean_normal);
+  put_points(w, job.existing);
+  const EnergyOptions& o = job.options;
+  for (double x : o.weights) w.put(x);
+  for (double x : {o.penalty, o.parallax_delta, o.incidence_mu, o.incidence_sigma, o.visibility.relative_eps,
+                   o.visibility.absolute_eps_of_diagonal})
+    w.put(x);
+  w.put(std::uint64_t(job.cameras.size()));
+  for (const PinholeCamera& c : job.cameras) put_camera(w, c);
+  return w.take();
+}
+
+ScoreJob read_score_job(const std::string& bytes) {
+  Reader r(bytes, kScore, "candidate scoring");
+  ScoreJob job;
+  job.mesh_key = r.get<std::uint64_t>();
+  job.has_mesh = r.get_bool();
+  if (job.has_mesh) {
+    job.mesh.vertices = get_points(r);
+    job.mesh.faces = r.get_vector<Face>();
+    job.mesh.validate("the candidate scoring message");
+    if (job.mesh.empty()) r.fail("the mesh has no faces");
+  }
+  job.region.faces = r.get_vector<int>();
+  job.region.vertices = r.get_vector<int>();
+  job.region.normals = get_points(r);
+  job.region.centroid = get_vec3(r);
+  job.region.mean_normal = get_vec3(r);
+  if (job.region.normals.size() != job.region.vertices.size()) r.fail("a region's normals are not one per vertex");
+  job.existing = get_points(r);
+  EnergyOptions& o = job.options;
+  for (double& x : o.weights) x = r.get_finite();
+  for (double* x : {&o.penalty, &o.parallax_delta, &o.incidence_mu, &o.incidence_sigma, &o.visibility.relative_eps,
+                    &o.visibility.absolute_eps_of_diagonal})
+    *x = r.get_finite();
+  o.check();
+  const std::uint64_t n = r.get_count(200);
+  for (std::uint64_t i = 0; i < n; ++i) {
+    job.cameras.push_back(get_camera(r));
+    job.cameras.back().check("candidate " + std::to_string(i));
+  }
+  r.finish();
+  return job;
+}
+
+std::string write_energies(const std::vector<EnergyTerms>& energies) {
+  Writer w(kEnergies);
+  w.put(std::uint64_t(energies.size()));
+  for (const EnergyTerms& e : energies)
+    for (double x : {e.occlusion, e.focus, e.parallax, e.incidence, e.total}) w.put(x);
+  return w.take();
+}
+
+std::vector<EnergyTerms> read_energies(const std::string& bytes) {
+  Reader r(bytes, kEnergies, "energies");
+  std::vector<EnergyTerms> out(std::size_t(r.get_count(40)));
+  for (EnergyTerms& e : out)
+    for (double* x : {&e.occlusion, &e.focus, &e.parallax, &e.incidence, &e.total}) *x = r.get<double>();
+  r.finish();
+  return out;
 }
 
 }  // namespace meshnbv::mpi

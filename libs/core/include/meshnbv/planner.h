@@ -2,6 +2,7 @@
 // the worst region and returns the best ones, greedily in batches.
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -65,8 +66,16 @@ struct SuggestResult {
 // parallax of later picks and is removed from the given candidates); once
 // the picks made for a region together see all of its worst faces, those
 // faces are set aside and the next K worst faces form the next region.
+// How suggest_views scores a set of candidate poses with one evaluator:
+// must return energy.evaluate(c) for each candidate, in order. Empty = in
+// parallel on this process; meshnbv-mpi spreads the candidates over its
+// ranks (docs/scale.md). `options` are the evaluator's energy options.
+using CandidateScorer = std::function<std::vector<EnergyTerms>(
+    const TriangleMesh& mesh, const EnergyEvaluator& energy, const EnergyOptions& options,
+    const std::vector<PinholeCamera>& candidates)>;
+
 SuggestResult suggest_views(const Scene& scene, const std::vector<float>& pri,
                             const SuggestOptions& options, const std::vector<View>& given = {},
-                            const ProgressCallback& progress = {});
+                            const ProgressCallback& progress = {}, const CandidateScorer& scorer = {});
 
 }  // namespace meshnbv

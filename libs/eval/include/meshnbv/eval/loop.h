@@ -86,6 +86,7 @@ struct LoopOptions {
   // distributes it over ranks); empty = compute_pri. Incremental from the
   // previous step either way (`previous` may be null).
   std::function<PriResult(const Scene&, const PriOptions&, const PriPrevious* previous)> pri_engine;
+  CandidateScorer candidate_scorer;  // likewise for scoring candidates; empty = here
 
   void check() const;
 };

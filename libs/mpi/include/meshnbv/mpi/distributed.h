@@ -9,6 +9,7 @@
 
 #include <string>
 
+#include "meshnbv/energy.h"
 #include "meshnbv/pri.h"
 
 namespace meshnbv::mpi {
@@ -36,6 +37,14 @@ class Session {
 // (tiles, faces, images decoded, seconds, peak memory).
 PriResult distributed_pri(const Scene& scene, const PriOptions& options, const ProgressCallback& progress,
                           const PriPrevious* previous, bool quiet);
+
+// Rank 0: suggest_views' CandidateScorer over every rank. The candidates
+// are cut into one contiguous share per rank; the ranks keep the mesh (and
+// its ray caster) from one scoring job to the next, so it is sent once per
+// mesh. The energies equal energy.evaluate(c), bit for bit.
+std::vector<EnergyTerms> distributed_scores(const TriangleMesh& mesh, const EnergyEvaluator& energy,
+                                            const EnergyOptions& options,
+                                            const std::vector<PinholeCamera>& candidates);
 
 // Ranks > 0: serve jobs until rank 0 calls stop_workers(). Returns 0.
 int serve_jobs();

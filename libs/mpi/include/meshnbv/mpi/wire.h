@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "meshnbv/energy.h"
 #include "meshnbv/pri.h"
 #include "meshnbv/scene.h"
 
@@ -27,5 +28,24 @@ std::vector<std::uint32_t> read_faces(const std::string& bytes);
 // Any number of parts, one after the other.
 std::string write_pri_parts(const std::vector<PriPart>& parts);
 std::vector<PriPart> read_pri_parts(const std::string& bytes);
+
+// Scoring candidate poses (suggest_views' CandidateScorer): the mesh (or
+// only its key, when the ranks hold it from the last job), the region, the
+// existing views' centres, the energy options and the candidates.
+struct ScoreJob {
+  std::uint64_t mesh_key = 0;
+  bool has_mesh = false;
+  TriangleMesh mesh;
+  WorstRegion region;
+  std::vector<Vec3> existing;
+  EnergyOptions options;
+  std::vector<PinholeCamera> cameras;
+};
+std::string write_score_job(const ScoreJob& job);
+ScoreJob read_score_job(const std::string& bytes);
+std::string write_energies(const std::vector<EnergyTerms>& energies);
+std::vector<EnergyTerms> read_energies(const std::string& bytes);
+// A 64-bit key of a mesh's vertices and faces.
+std::uint64_t mesh_key(const TriangleMesh& mesh);
 
 }  // namespace meshnbv::mpi
