@@ -8,6 +8,8 @@
 #include "meshnbv/error.h"
 #include "meshnbv/pri.h"
 #include "meshnbv/raycaster.h"
+#include "meshnbv/renderer.h"
+#include "meshnbv/synth/generators.h"
 #include "meshnbv/synth/project.h"
 #include "meshnbv/visibility.h"
 #include "test_util.h"
@@ -231,4 +233,36 @@ TEST(PriIncremental, InconsistentPreviousIsAnError) {
   PriPrevious ssd{s.mesh, compute_pri(s, o)};
   o.measure = Measure::Offset;
   EXPECT_THROW(compute_pri(s, o, {}, &ssd), Error);  // no offset values to reuse
+}
+
+// A long strip of ground, each camera looking down at its own part: most
+// views of a tile are culled by its bounding box (may_see_box), and the
+// tiles still give the whole result.
+TEST(PriParts, TilesOfAWideSceneCullTheirViewsAndAgree) {
+  const TriangleMesh ground = synth::make_ground(Vec3(-20, -2, 0), Vec3(20, 2, 0), 0.5, 0);
+  Scene s;
+  s.mesh = ground;
+  s.mesh.face_attributes.clear();
+  const RayCaster caster(ground);
+  const SolidTexture texture(3, {{Pattern::Noise, Vec3(0.7, 0.6, 0.5), Vec3(0.3, 0.3, 0.3), 0.5, 0.45}}, 0.1);
+  for (int i = 0; i < 9; ++i) {
+    View v;
+    v.label = "v" + std::to_string(i);
+    const Vec3 eye(-16 + 4 * i, -1.0 + 0.3 * (i % 3), 5), target(-16 + 4 * i + 0.5 * (i % 2), 0, 0);
+    v.camera = PinholeCamera::look_at(eye, target, Vec3(0, 1, 0.3), 180, 180, 99.5, 74.5, 200, 150);
+    v.pixels = std::make_shared<const Image>(
+        render({&ground, &caster, &texture, ground.face_attribute(synth::kMaterialAttribute)}, v.camera));
+    s.views.push_back(v);
+  }
+  // One camera behind the strip's end, looking away from it.
+  s.views[8].camera = PinholeCamera::look_at(Vec3(25, 0, 5), Vec3(40, 0, 0), Vec3(0, 0, 1), 180, 180, 99.5, 74.5,
+                                            200, 150);
+  for (const char* m : {"ssd", "offset"}) {
+    SCOPED_TRACE(m);
+    PriOptions o;
+    o.measure = parse_measure(m);
+    const PriResult whole = compute_pri(s, o);
+    ASSERT_GT(whole.observed, 100u);
+    expect_identical(whole, by_tiles(s, o, 12));
+  }
 }

@@ -104,10 +104,12 @@ bool interior_unoccluded(const TriangleMesh& mesh, const RayCaster& caster, std:
   return caster.segments_clear4(c, points, o.visibility.relative_eps, abs_eps);
 }
 
+// `usable`: the cameras (ascending indices into cams) that `vis` holds, in
+// its order; null = every camera.
 PriFaceViews select_views(const TriangleMesh& mesh, const std::vector<Vec3>& normals,
                        const VertexVisibility& vis, const RayCaster& caster,
                        const std::vector<PinholeCamera>& cams, const std::vector<Vec3>& centres,
-                       std::size_t f, const PriOptions& o, double abs_eps) {
+                       std::size_t f, const PriOptions& o, double abs_eps, const std::vector<int>* usable) {
   PriFaceViews out;
   struct Candidate {
     int view;
@@ -117,8 +119,10 @@ PriFaceViews select_views(const TriangleMesh& mesh, const std::vector<Vec3>& nor
   const Vec3 centroid = mesh.face_centroid(f);
   const Face& face = mesh.faces[f];
   const double min_cosine = std::cos(o.max_incidence_angle * M_PI / 180.0);
-  for (std::size_t i = 0; i < cams.size(); ++i) {
-    if (!face_visible(mesh, normals, vis, f, i, centres[i])) continue;
+  const std::size_t n = usable ? usable->size() : cams.size();
+  for (std::size_t k = 0; k < n; ++k) {
+    const std::size_t i = usable ? std::size_t((*usable)[k]) : k;
+    if (!face_visible(mesh, normals, vis, f, k, centres[i])) continue;
     Vec2 p[3];
     for (int k = 0; k < 3; ++k) cams[i].project(mesh.vertices[face[k]], &p[k]);
     const double cosine = normals[f].dot((centres[i] - centroid).normalized());
@@ -234,6 +238,36 @@ double pair_error_sum(const std::vector<const float*>& patches, std::size_t n, M
   return (double(*pairs) - rho_sum) / 2.0;
 }
 
+namespace {
+
+// Whether any point of `box` may project inside the camera's image, in
+// front of it: false only when, for a camera without lens distortion, the
+// box lies wholly behind it, or the projections of its corners (in front)
+// all lie beyond one image edge (with a pixel of margin) -- the projection
+// of a box in front of a pinhole camera is the convex hull of its corners'.
+// Culls the views of a tile; a culled view sees none of its vertices.
+bool may_see_box(const PinholeCamera& c, const BoundingBox& box) {
+  if (box.empty() || c.has_distortion()) return true;
+  int behind = 0, left = 0, right = 0, above = 0, below = 0;
+  for (const Vec3& corner : box.corners()) {
+    const Vec3 x = c.R * corner + c.t;
+    if (!(x.z() > 0)) {
+      ++behind;
+      continue;
+    }
+    const double u = c.fx * x.x() / x.z() + c.skew * x.y() / x.z() + c.cx, v = c.fy * x.y() / x.z() + c.cy;
+    left += u < -1.0;
+    right += u > c.width;
+    above += v < -1.0;
+    below += v > c.height;
+  }
+  if (behind == 8) return false;
+  if (behind > 0) return true;
+  return !(left == 8 || right == 8 || above == 8 || below == 8);
+}
+
+}  // namespace
+
 PriViewSelection select_pri_views(const Scene& scene, const PriOptions& options,
                                   const ProgressCallback& progress,
                                   const std::vector<std::uint32_t>& faces, const RayCaster* caster) {
@@ -269,6 +303,7 @@ PriViewSelection select_pri_views(const Scene& scene, const PriOptions& options,
     if (!caster) own = std::make_unique<RayCaster>(mesh);
     const RayCaster& rc = caster ? *caster : *own;
     VertexVisibility vis;
+    std::vector<int> usable;  // a tile: the cameras that may see it
     if (faces.empty()) {
       vis = VertexVisibility(mesh, rc, s.cameras, options.visibility, progress);
     } else {
@@ -278,7 +313,15 @@ PriViewSelection select_pri_views(const Scene& scene, const PriOptions& options,
         for (int k = 0; k < 3; ++k) vertices.push_back(std::uint32_t(mesh.faces[f][k]));
       std::sort(vertices.begin(), vertices.end());
       vertices.erase(std::unique(vertices.begin(), vertices.end()), vertices.end());
-      vis = VertexVisibility(mesh, rc, s.cameras, options.visibility, progress, vertices);
+      BoundingBox box;
+      for (std::uint32_t v : vertices) box.extend(mesh.vertices[v]);
+      std::vector<PinholeCamera> cams;
+      for (std::size_t i = 0; i < s.cameras.size(); ++i)
+        if (may_see_box(s.cameras[i], box)) {
+          usable.push_back(int(i));
+          cams.push_back(s.cameras[i]);
+        }
+      vis = VertexVisibility(mesh, rc, cams, options.visibility, progress, vertices);
     }
     const std::vector<Vec3> normals = mesh.face_normals();
     const double abs_eps = options.visibility.absolute_eps_of_diagonal * mesh.bounding_box().diagonal();
@@ -288,7 +331,8 @@ PriViewSelection select_pri_views(const Scene& scene, const PriOptions& options,
       const std::size_t end = std::min(n, begin + kChunk);
       tbb::parallel_for(tbb::blocked_range<std::size_t>(begin, end), [&](const auto& r) {
         for (std::size_t j = r.begin(); j < r.end(); ++j)
-          s.faces[j] = select_views(mesh, normals, vis, rc, s.cameras, centres, s.face_id(j), options, abs_eps);
+          s.faces[j] = select_views(mesh, normals, vis, rc, s.cameras, centres, s.face_id(j), options, abs_eps,
+                                    faces.empty() ? nullptr : &usable);
       });
       report_progress(progress, double(end) / double(n), "view selection");
     }

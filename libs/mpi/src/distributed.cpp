@@ -431,9 +431,10 @@ PriResult distributed_pri(const Scene& scene, const PriOptions& options, const P
     std::ostringstream line;
     line << "meshnbv-mpi: PRI on " << stats.size() << " rank" << (stats.size() > 1 ? "s" : "") << ":";
     for (std::size_t k = 0; k < stats.size(); ++k)
-      line << (k ? ";" : "") << " rank " << k << " " << stats[k].tiles << " tiles, " << stats[k].faces
-           << " faces, " << stats[k].images << " images decoded, " << std::lround(stats[k].seconds * 100) / 100.0
-           << " s, peak " << std::lround(stats[k].peak_mb) << " MB, " << stats[k].threads << " threads";
+      line << (k ? ";" : "") << " rank " << k << " " << std::llround(stats[k].tiles) << " tiles, "
+           << std::llround(stats[k].faces) << " faces, " << std::llround(stats[k].images) << " images decoded, "
+           << std::lround(stats[k].seconds * 100) / 100.0 << " s, peak " << std::lround(stats[k].peak_mb) << " MB, "
+           << std::llround(stats[k].threads) << " threads";
     std::cerr << line.str() << std::endl;
   }
   return result;
