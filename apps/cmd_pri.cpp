@@ -73,7 +73,8 @@ void add_pri_command(CLI::App& app) {
     bar.finish();
     io::PlyWriteOptions ply;
     ply.overwrite = a->overwrite;
-    ply.exact_coordinates = true;  // the very mesh, for --previous
+    ply.exact_coordinates = true;
+    ply.comments = pri_key_comments(r);  // the very mesh, for --previous
     io::write_ply(mesh_with_pri(scene.mesh, r), a->out, ply);
     const std::string summary = pri_summary_json(r, a->options, a->summary_worst);
     if (!a->json.empty())
@@ -84,7 +85,8 @@ void add_pri_command(CLI::App& app) {
               << " views; " << r.seconds << " s\n";
     if (previous)
       std::cout << "incremental: recomputed " << r.recomputed << " of " << s.faces << " faces, reused "
-                << s.faces - r.recomputed << " from " << a->previous << "\n";
+                << s.faces - r.recomputed << " from " << a->previous << "; views selected again for "
+                << r.reselected << " faces\n";
     if (!s.percentiles.empty()) {
       std::cout << "PRI (" << measure_name(a->options.measure) << ", " << measure_unit(a->options.measure)
                 << ") median " << s.percentiles[3].second << ", 95% " << s.percentiles[5].second

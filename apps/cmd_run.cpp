@@ -92,7 +92,8 @@ void add_run_command(CLI::App& app) {
     fs::create_directories(out);
     io::PlyWriteOptions ply;
     ply.overwrite = true;
-    ply.exact_coordinates = true;  // the very mesh, for meshnbv pri --previous
+    ply.exact_coordinates = true;
+    ply.comments = pri_key_comments(pri);  // the very mesh, for meshnbv pri --previous
     io::write_ply(mesh_with_pri(scene.mesh, pri), (out / "pri.ply").string(), ply);
     io::write_atomically((out / "pri.json").string(),
                          [&](std::ostream& o) { o << pri_summary_json(pri, a->pri); });

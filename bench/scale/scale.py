@@ -17,8 +17,9 @@ MESHNBV = os.path.join(BIN, "meshnbv")
 MPI = os.path.join(BIN, "meshnbv-mpi")
 
 
-def read_ply(path):
-    """Vertices and faces of a binary little-endian PLY written by MeshNBV."""
+def read_ply(path, fields=False):
+    """Vertices and faces (and with `fields` the face properties) of a binary
+    little-endian PLY written by MeshNBV."""
     data = open(path, "rb").read()
     end = data.index(b"end_header\n") + len(b"end_header\n")
     header = data[:end].decode().splitlines()
@@ -41,8 +42,10 @@ def read_ply(path):
     at = end
     verts = np.frombuffer(data, dtype="<" + coord, count=3 * nv, offset=at).reshape(nv, 3).astype(np.float64)
     at += 3 * nv * np.dtype(coord).itemsize
-    fields = [("n", "u1"), ("v", "<i4", 3)] + [(name, "<" + t) for t, name in face_props]
-    faces = np.frombuffer(data, dtype=np.dtype(fields), count=nf, offset=at)
+    fields_of = [("n", "u1"), ("v", "<i4", 3)] + [(name, "<" + t) for t, name in face_props]
+    faces = np.frombuffer(data, dtype=np.dtype(fields_of), count=nf, offset=at)
+    if fields:
+        return faces
     return verts, np.array(faces["v"], dtype=np.int32)
 
 
@@ -148,11 +151,15 @@ def main():
 
     # 2. Incremental: a local edit and an added view.
     v, f = read_ply(big)
-    centre = v[np.argmax(v[:, 2])].copy()  # the top of the highest building
-    centre[2] = v[:, 2].max()
+    # A dent of radius 4 m around the surface point nearest to a point
+    # above the centre, inside the bounding box (which then stays the same).
+    lo, hi = v.min(axis=0), v.max(axis=0)
+    aim = 0.5 * (lo + hi) + np.array([0, 0, 0.2 * (hi[2] - lo[2])])
+    centre = v[np.argmin(np.linalg.norm(v - aim, axis=1))]
     near = np.linalg.norm(v - centre, axis=1) < 4.0
     edited = v.copy()
     edited[near, 2] -= 0.3
+    assert (edited.min(axis=0) == lo).all() and (edited.max(axis=0) == hi).all(), "the dent moved the bounding box"
     edited_ply = os.path.join(WORK, "edited.ply")
     write_ply(edited_ply, edited, f)
     edited_scene = os.path.join(WORK, "edited.json")
@@ -168,6 +175,7 @@ def main():
         t_inc, out, _ = run([MESHNBV, "pri", target, "--previous", previous, "--out", inc, "--overwrite",
                              "--quiet"])
         m = re.search(r"recomputed (\d+) of (\d+) faces", out)
+        sel = re.search(r"views selected again for (\d+) faces", out)
         results["runs"].append({"what": "incremental: " + name, "full_seconds": t_full,
                                 "incremental_seconds": t_inc, "recomputed": int(m.group(1)),
                                 "faces": int(m.group(2)), "identical": same(full, inc),
@@ -180,15 +188,22 @@ def main():
         sub = os.path.join(WORK, "views%d.json" % views)
         scene_with(os.path.join(city, "scene.json"), sub, big, views=views)
         summary = os.path.join(WORK, "views%d_summary.json" % views)
-        t, _, err = run(["/usr/bin/time", "-f", "peak_kb %M", MESHNBV, "pri", sub, "--out",
-                         os.path.join(WORK, "views.ply"), "--json", summary, "--overwrite", "--quiet"])
+        ply = os.path.join(WORK, "views.ply")
+        t, _, err = run(["/usr/bin/time", "-f", "peak_kb %M", MESHNBV, "pri", sub, "--out", ply, "--json", summary,
+                         "--overwrite", "--quiet"])
         s = json.load(open(summary))
+        per_face = read_ply(ply, fields=True)
+        seen = per_face["pri_views"] >= 2
         results["runs"].append({"what": "cost point", "views": views, "faces": faces, "seconds": t,
                                 "peak_mb": float(re.search(r"peak_kb (\d+)", err).group(1)) / 1024,
-                                "observed": s["faces"]["observed"], "pri_seconds": s["seconds"]})
+                                "observed": s["faces"]["observed"], "pri_seconds": s["seconds"],
+                                "mean_views": float(per_face["pri_views"].mean()),
+                                "mean_samples": float(per_face["pri_samples"][seen].mean())})
         print("cost point: %d views, %.1f s" % (views, t), flush=True)
     json.dump(results, open(os.path.join(OUT, "runs.json"), "w"), indent=1)
     table(results)
+    subprocess.run(["/usr/bin/python3", os.path.join(os.path.dirname(os.path.abspath(__file__)), "model.py")],
+                   check=True)
 
 
 def table(results):
@@ -201,17 +216,20 @@ def table(results):
                 ", ".join("%.0f" % x for x in r.get("images_decoded", [])) or "-",
                 ", ".join("%.0f" % x for x in r.get("faces", [])) or "-",
                 {True: "yes", False: "NO"}.get(r.get("identical"), "reference")))
-    rows += ["", "| incremental | full s | incremental s | recomputed faces | of | identical |", "|---|---|---|---|---|---|"]
+    rows += ["", "| incremental | full s | incremental s | recomputed faces | views selected again | of | identical |",
+             "|---|---|---|---|---|---|---|"]
     for r in results["runs"]:
         if r["what"].startswith("incremental"):
-            rows.append("| %s | %.1f | %.1f | %d (%.1f%%) | %d | %s |" % (
+            rows.append("| %s | %.1f | %.1f | %d (%.1f%%) | %d (%.1f%%) | %d | %s |" % (
                 r["what"][13:], r["full_seconds"], r["incremental_seconds"], r["recomputed"],
-                100.0 * r["recomputed"] / r["faces"], r["faces"], "yes" if r["identical"] else "NO"))
-    rows += ["", "| cost point: views | faces | wall s | PRI s | peak MB |", "|---|---|---|---|---|"]
+                100.0 * r["recomputed"] / r["faces"], r["reselected"], 100.0 * r["reselected"] / r["faces"],
+                r["faces"], "yes" if r["identical"] else "NO"))
+    rows += ["", "| cost point: views | faces | mean views per face | wall s | PRI s | peak MB |",
+             "|---|---|---|---|---|---|"]
     for r in results["runs"]:
         if r["what"] == "cost point":
-            rows.append("| %d | %d | %.1f | %.1f | %.0f |" % (r["views"], r["faces"], r["seconds"], r["pri_seconds"],
-                                                         r["peak_mb"]))
+            rows.append("| %d | %d | %.2f | %.1f | %.1f | %.0f |" % (
+                r["views"], r["faces"], r["mean_views"], r["seconds"], r["pri_seconds"], r["peak_mb"]))
     s = results["scene"]
     text = ("Scene: %d faces (%s), %d views of %s. Machine: %d cores.\n\n" % (
         s["faces"], s["from"], s["views"], s["image"], results["machine"]["cpus"])) + "\n".join(rows) + "\n"

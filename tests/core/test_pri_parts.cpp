@@ -177,15 +177,22 @@ TEST(PriIncremental, LocalEditEqualsAFullComputationOnAFifthOfTheFaces) {
     const PriResult old = compute_pri(before, o);
     Scene after = before;
     const BoundingBox box = before.mesh.bounding_box();
-    // A dent in the roof, a few faces wide.
-    const Vec3 roof(box.center().x(), box.center().y(), box.max.z());
-    after.mesh = edited(before.mesh, roof, 0.08 * box.diagonal(), -0.01 * box.diagonal());
+    // A dent a few faces wide, inside the bounding box (which then stays
+    // the same): around the surface point nearest to a point above the centre.
+    const Vec3 aim = box.center() + Vec3(0, 0, 0.2 * box.extent().z());
+    Vec3 centre = before.mesh.vertices[0];
+    for (const Vec3& v : before.mesh.vertices)
+      if ((v - aim).norm() < (centre - aim).norm()) centre = v;
+    after.mesh = edited(before.mesh, centre, 0.06 * box.diagonal(), -0.005 * box.diagonal());
+    ASSERT_EQ(after.mesh.bounding_box().max, box.max);
+    ASSERT_EQ(after.mesh.bounding_box().min, box.min);
     ASSERT_NE(after.mesh.vertices, before.mesh.vertices);
     const PriPrevious previous{before.mesh, old};
     const PriResult incremental = compute_pri(after, o, {}, &previous);
     expect_identical(compute_pri(after, o), incremental);
     EXPECT_GT(incremental.recomputed, 0u);
     EXPECT_LE(double(incremental.recomputed), 0.2 * double(after.mesh.num_faces()));
+    EXPECT_GE(plan_incremental_pri(after, o, previous).selected, incremental.recomputed);
   }
 }
 
@@ -205,6 +212,11 @@ TEST(PriIncremental, AddingAViewRecomputesTheFacesItSees) {
     seeing += std::find(fv.views.begin(), fv.views.end(), added) != fv.views.end();
   EXPECT_EQ(incremental.recomputed, seeing);
   EXPECT_GT(seeing, 0u);
+  // A view removed: every face's views selected again, still exact.
+  const PriPrevious all_before{all.mesh, compute_pri(all, o)};
+  const PriReuse plan = plan_incremental_pri(fewer, o, all_before);
+  EXPECT_EQ(plan.selected, all.mesh.num_faces());
+  expect_identical(compute_pri(fewer, o), compute_pri(fewer, o, {}, &all_before));
   EXPECT_LT(seeing, all.mesh.num_faces());
 }
 
@@ -235,11 +247,10 @@ TEST(PriIncremental, InconsistentPreviousIsAnError) {
   EXPECT_THROW(compute_pri(s, o, {}, &ssd), Error);  // no offset values to reuse
 }
 
-// A long strip of ground, each camera looking down at its own part: most
-// views of a tile are culled by its bounding box (may_see_box), and the
-// tiles still give the whole result.
-TEST(PriParts, TilesOfAWideSceneCullTheirViewsAndAgree) {
-  const TriangleMesh ground = synth::make_ground(Vec3(-20, -2, 0), Vec3(20, 2, 0), 0.5, 0);
+// A long strip of ground, each camera looking down at its own part (the
+// last one behind the strip's end, looking away from it).
+Scene strip() {
+  const TriangleMesh ground = synth::make_ground(Vec3(-20, -2, 0), Vec3(20, 2, 0), 0.25, 0);
   Scene s;
   s.mesh = ground;
   s.mesh.face_attributes.clear();
@@ -257,6 +268,13 @@ TEST(PriParts, TilesOfAWideSceneCullTheirViewsAndAgree) {
   // One camera behind the strip's end, looking away from it.
   s.views[8].camera = PinholeCamera::look_at(Vec3(25, 0, 5), Vec3(40, 0, 0), Vec3(0, 0, 1), 180, 180, 99.5, 74.5,
                                             200, 150);
+  return s;
+}
+
+// Most views of a tile of the strip are culled by its bounding box
+// (may_see_box), and the tiles still give the whole result.
+TEST(PriParts, TilesOfAWideSceneCullTheirViewsAndAgree) {
+  const Scene s = strip();
   for (const char* m : {"ssd", "offset"}) {
     SCOPED_TRACE(m);
     PriOptions o;
@@ -265,4 +283,39 @@ TEST(PriParts, TilesOfAWideSceneCullTheirViewsAndAgree) {
     ASSERT_GT(whole.observed, 100u);
     expect_identical(whole, by_tiles(s, o, 12));
   }
+}
+
+// On the strip, an edit seen by two cameras: views are selected again only
+// for the faces those cameras see near it, and the result is exact.
+TEST(PriIncremental, LocalEditSelectsViewsOnlyWhereItMayReach) {
+  const Scene before = strip();
+  const PriOptions o;
+  const PriPrevious previous{before.mesh, compute_pri(before, o)};
+  Scene after = before;
+  // Vertices under camera 2 moved along the strip: the geometry changes,
+  // its bounding box does not.
+  for (Vec3& v : after.mesh.vertices)
+    if ((v - Vec3(-8, 0, 0)).norm() < 1.2) v.x() += 0.05;
+  ASSERT_EQ(after.mesh.bounding_box().min, before.mesh.bounding_box().min);
+  ASSERT_EQ(after.mesh.bounding_box().max, before.mesh.bounding_box().max);
+  const PriReuse plan = plan_incremental_pri(after, o, previous);
+  const PriResult incremental = compute_pri(after, o, {}, &previous);
+  expect_identical(compute_pri(after, o), incremental);
+  EXPECT_GT(incremental.recomputed, 0u);
+  EXPECT_GE(plan.selected, incremental.recomputed);
+  // Bound: the faces of the strip that a camera seeing the edit sees.
+  std::size_t seen_with_edit = 0;
+  for (std::size_t f = 0; f < after.mesh.num_faces(); ++f) {
+    bool near = false;
+    for (const View& v : after.views) {
+      Vec2 p, q;
+      const bool sees_edit = v.camera.project(Vec3(-8, 0, 0), &p) && v.camera.in_image(p);
+      if (sees_edit && v.camera.project(after.mesh.face_centroid(f), &q) && v.camera.in_image(q)) near = true;
+    }
+    seen_with_edit += near;
+  }
+  // ... plus the two tiles (of 256 faces, plan_incremental_pri) cut by
+  // the ends of that footprint along the strip.
+  EXPECT_LE(plan.selected, seen_with_edit + 2 * 256);
+  EXPECT_LT(plan.selected, after.mesh.num_faces() / 4);
 }

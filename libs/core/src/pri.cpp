@@ -270,7 +270,8 @@ bool may_see_box(const PinholeCamera& c, const BoundingBox& box) {
 
 PriViewSelection select_pri_views(const Scene& scene, const PriOptions& options,
                                   const ProgressCallback& progress,
-                                  const std::vector<std::uint32_t>& faces, const RayCaster* caster) {
+                                  const std::vector<std::uint32_t>& faces, const RayCaster* caster,
+                                  bool views_only) {
   options.check();
   const TriangleMesh& mesh = scene.mesh;
   mesh.validate(scene.mesh_path);
@@ -289,6 +290,7 @@ PriViewSelection select_pri_views(const Scene& scene, const PriOptions& options,
     centres.push_back(s.cameras.back().center());
   }
   s.options_key = pri_options_key(options);
+  if (views_only) return s;
   const std::size_t F = mesh.num_faces();
   for (std::size_t j = 0; j < faces.size(); ++j)
     if (faces[j] >= F || (j > 0 && faces[j] <= faces[j - 1]))
@@ -396,6 +398,13 @@ std::uint64_t pri_view_key(const Scene& scene, std::size_t view) {
   return h;
 }
 
+std::vector<std::uint64_t> pri_view_keys(const Scene& scene) {
+  std::vector<std::uint64_t> keys;
+  for (std::size_t i = 0; i < scene.views.size(); ++i)
+    if (scene.views[i].has_image() && scene.views[i].used) keys.push_back(pri_view_key(scene, i));
+  return keys;
+}
+
 std::uint64_t pri_options_key(const PriOptions& options) {
   std::uint64_t h = 0x7072696f707473ull;  // "priopts"
   for (const auto& spec : pri_option_table()) {
@@ -418,7 +427,9 @@ std::vector<std::vector<std::uint32_t>> pri_tiles(const TriangleMesh& mesh, std:
   if (ids.empty() || count == 0) return tiles;
   BoundingBox box;
   for (std::uint32_t f : ids) box.extend(mesh.face_centroid(f));
-  const Vec3 extent = box.extent().cwiseMax(Vec3::Constant(1e-300));
+  // One scale on every axis (the largest extent), so that a run is compact
+  // in space, not in the box's normalised coordinates.
+  const Vec3 extent = Vec3::Constant(std::max(box.extent().maxCoeff(), 1e-300));
   // 21 bits per axis, interleaved.
   auto spread = [](std::uint64_t x) {
     x &= 0x1fffff;
@@ -989,61 +1000,232 @@ FaceGeometry face_geometry(const TriangleMesh& mesh, std::size_t f) {
 
 }  // namespace
 
-PriReuse reuse_previous_pri(const Scene& scene, const PriOptions& options, const PriViewSelection& selection,
-                            const PriPrevious& previous) {
+namespace {
+
+// The 2-D bounding rectangle (u0, v0, u1, v1) of the projection of `box`
+// into a camera without lens distortion, and the depth range of its
+// corners (z0, z1: a point of the box is at a depth in between); false when
+// it is unbounded (a corner behind the camera) or the camera distorts.
+bool projected_rect(const PinholeCamera& c, const BoundingBox& box, std::array<double, 6>* rect) {
+  if (c.has_distortion()) return false;
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  *rect = {inf, inf, -inf, -inf, inf, -inf};
+  for (const Vec3& corner : box.corners()) {
+    const Vec3 x = c.R * corner + c.t;
+    if (!(x.z() > 0)) return false;
+    const double u = c.fx * x.x() / x.z() + c.skew * x.y() / x.z() + c.cx, v = c.fy * x.y() / x.z() + c.cy;
+    (*rect)[0] = std::min((*rect)[0], u);
+    (*rect)[1] = std::min((*rect)[1], v);
+    (*rect)[2] = std::max((*rect)[2], u);
+    (*rect)[3] = std::max((*rect)[3], v);
+    (*rect)[4] = std::min((*rect)[4], x.z());
+    (*rect)[5] = std::max((*rect)[5], x.z());
+  }
+  return true;
+}
+
+// Whether the segments from the camera to the points of tile box `t` may
+// meet edit box `e`: their projections overlap (with `margin` pixels), and
+// the edit is not wholly farther than the tile (a segment ends at its point).
+bool may_occlude(const std::array<double, 6>& t, const std::array<double, 6>& e, double margin) {
+  return t[0] <= e[2] + margin && e[0] <= t[2] + margin && t[1] <= e[3] + margin && e[1] <= t[3] + margin &&
+         e[4] <= t[5] * (1 + 1e-9);
+}
+
+// Bounding boxes of groups of triangles (given by their corners), grouped
+// along a Morton curve so that a local edit gives a few small boxes.
+std::vector<BoundingBox> triangle_groups(const std::vector<std::array<Vec3, 3>>& triangles) {
+  std::vector<BoundingBox> boxes;
+  if (triangles.empty()) return boxes;
+  TriangleMesh soup;
+  for (const auto& t : triangles) {
+    const int base = int(soup.vertices.size());
+    for (const Vec3& p : t) soup.vertices.push_back(p);
+    soup.faces.push_back({base, base + 1, base + 2});
+  }
+  constexpr std::size_t kGroup = 256;
+  for (const auto& group : pri_tiles(soup, (triangles.size() + kGroup - 1) / kGroup)) {
+    BoundingBox b;
+    for (std::uint32_t f : group)
+      for (int k = 0; k < 3; ++k) b.extend(soup.vertices[std::size_t(soup.faces[f][k])]);
+    boxes.push_back(b);
+  }
+  return boxes;
+}
+
+bool same_box(const BoundingBox& a, const BoundingBox& b) {
+  return std::memcmp(a.min.data(), b.min.data(), 3 * sizeof(double)) == 0 &&
+         std::memcmp(a.max.data(), b.max.data(), 3 * sizeof(double)) == 0;
+}
+
+// Whether `old` comes in the same order within `now` (views added, none
+// removed or changed).
+bool is_subsequence(const std::vector<std::uint64_t>& old, const std::vector<std::uint64_t>& now) {
+  std::size_t j = 0;
+  for (std::size_t i = 0; i < now.size() && j < old.size(); ++i)
+    if (now[i] == old[j]) ++j;
+  return j == old.size();
+}
+
+}  // namespace
+
+PriReuse plan_incremental_pri(const Scene& scene, const PriOptions& options, const PriPrevious& previous,
+                              const ProgressCallback& progress, const RayCaster* caster) {
   const PriResult& old = previous.result;
   const std::size_t G = previous.mesh.num_faces();
-  if (!selection.face_ids.empty() || selection.faces.size() != scene.mesh.num_faces())
-    throw Error("incremental PRI needs the view selection of every face");
   if (old.pri.size() != G || old.evidence_key.size() != G)
     throw Error("the previous PRI does not hold one value and evidence key per face of its mesh");
   if ((options.measure == Measure::Offset) && old.offset_signed.size() != G)
     throw Error("the previous PRI has no offset-measure values (computed with another measure)");
+  const TriangleMesh& mesh = scene.mesh;
+  const std::size_t F = mesh.num_faces();
+  // The views and their keys (select_pri_views' checks), no face yet.
+  const PriViewSelection views = select_pri_views(scene, options, {}, {}, nullptr, true);
+
+  // Faces of the new mesh with an identical face in the previous one.
   std::unordered_map<FaceGeometry, std::uint32_t, FaceGeometryHash> by_geometry;
   by_geometry.reserve(G);
   for (std::size_t g = 0; g < G; ++g)
     if (old.evidence_key[g] != 0) by_geometry.emplace(face_geometry(previous.mesh, g), std::uint32_t(g));
+  constexpr std::uint32_t kNone = 0xffffffffu;
+  std::vector<std::uint32_t> match(F, kNone);
+  std::vector<std::uint8_t> old_matched(G, 0);
+  for (std::size_t f = 0; f < F; ++f) {
+    const auto it = by_geometry.find(face_geometry(mesh, f));
+    if (it == by_geometry.end()) continue;
+    match[f] = it->second;
+    old_matched[it->second] = 1;
+  }
+
+  // The faces whose views must be selected again.
+  std::vector<std::uint8_t> suspect(F, 0);
+  for (std::size_t f = 0; f < F; ++f) suspect[f] = match[f] == kNone;
+  const bool keep_selection = old.options_key == views.options_key && !old.view_keys.empty() &&
+                              is_subsequence(old.view_keys, views.view_keys) &&
+                              same_box(mesh.bounding_box(), previous.mesh.bounding_box());
+  if (!keep_selection) {
+    std::fill(suspect.begin(), suspect.end(), std::uint8_t(1));
+  } else {
+    std::vector<std::array<Vec3, 3>> edited;
+    for (std::size_t f = 0; f < F; ++f)
+      if (match[f] == kNone)
+        edited.push_back({mesh.vertices[mesh.faces[f][0]], mesh.vertices[mesh.faces[f][1]], mesh.vertices[mesh.faces[f][2]]});
+    for (std::size_t g = 0; g < G; ++g)
+      if (!old_matched[g]) {
+        const Face& t = previous.mesh.faces[g];
+        edited.push_back({previous.mesh.vertices[t[0]], previous.mesh.vertices[t[1]], previous.mesh.vertices[t[2]]});
+      }
+    const std::vector<BoundingBox> edits = triangle_groups(edited);
+    constexpr std::size_t kTileFaces = 256;
+    const auto tiles = pri_tiles(mesh, (F + kTileFaces - 1) / kTileFaces);
+    std::vector<BoundingBox> tile_boxes(tiles.size());
+    for (std::size_t t = 0; t < tiles.size(); ++t)
+      for (std::uint32_t f : tiles[t])
+        for (int k = 0; k < 3; ++k) tile_boxes[t].extend(mesh.vertices[mesh.faces[f][k]]);
+    std::vector<std::uint8_t> tile_suspect(tiles.size(), 0);
+    std::size_t j = 0;  // position in old.view_keys
+    for (std::size_t i = 0; i < views.cameras.size(); ++i) {
+      const bool added = !(j < old.view_keys.size() && old.view_keys[j] == views.view_keys[i]);
+      if (!added) ++j;
+      const PinholeCamera& cam = views.cameras[i];
+      std::vector<std::array<double, 6>> edit_rects;
+      bool unbounded = false;
+      for (const BoundingBox& b : edits) {
+        if (!may_see_box(cam, b)) continue;  // the edit is out of this view
+        std::array<double, 6> r;
+        if (!projected_rect(cam, b, &r)) unbounded = true;
+        else edit_rects.push_back(r);
+      }
+      if (!added && !unbounded && edit_rects.empty()) continue;
+      for (std::size_t t = 0; t < tiles.size(); ++t) {
+        if (tile_suspect[t] || !may_see_box(cam, tile_boxes[t])) continue;
+        if (added || unbounded) {
+          tile_suspect[t] = 1;
+          continue;
+        }
+        // A segment from the camera to a point of the tile projects to that
+        // point's pixel: an edit can hide it only where their projections meet.
+        std::array<double, 6> r;
+        if (!projected_rect(cam, tile_boxes[t], &r)) {
+          tile_suspect[t] = 1;
+          continue;
+        }
+        for (const auto& e : edit_rects)
+          if (may_occlude(r, e, 2.0)) {
+            tile_suspect[t] = 1;
+            break;
+          }
+      }
+    }
+    for (std::size_t t = 0; t < tiles.size(); ++t)
+      if (tile_suspect[t])
+        for (std::uint32_t f : tiles[t]) suspect[f] = 1;
+  }
+  std::vector<std::uint32_t> again;
+  for (std::size_t f = 0; f < F; ++f)
+    if (suspect[f]) again.push_back(std::uint32_t(f));
+
   PriReuse out;
+  out.selected = again.size();
   PriViewSelection& changed = out.changed;
-  changed.image_views = selection.image_views;
-  changed.cameras = selection.cameras;
-  changed.view_keys = selection.view_keys;
-  changed.options_key = selection.options_key;
+  changed.image_views = views.image_views;
+  changed.cameras = views.cameras;
+  changed.view_keys = views.view_keys;
+  changed.options_key = views.options_key;
+  PriViewSelection selection;
+  if (!again.empty()) selection = select_pri_views(scene, options, progress, again, caster);
   std::vector<std::uint32_t> from;  // previous face of each reused face
-  for (std::size_t f = 0; f < selection.faces.size(); ++f) {
-    // The key score_block would give the face now.
-    std::uint64_t key = selection.options_key;
-    for (int v : selection.faces[f].views) key = combine(key, selection.view_keys[std::size_t(v)]);
-    const auto it = by_geometry.find(face_geometry(scene.mesh, f));
-    if (it != by_geometry.end() && old.evidence_key[it->second] == key) {
+  std::size_t j = 0;                // position in `again`
+  for (std::size_t f = 0; f < F; ++f) {
+    if (!suspect[f]) {  // its selection is the previous one: so is its key
       out.reused.faces.push_back(std::uint32_t(f));
-      from.push_back(it->second);
+      from.push_back(match[f]);
+      continue;
+    }
+    const PriFaceViews& fv = selection.faces[j++];
+    // The key score_block would give the face now.
+    std::uint64_t key = views.options_key;
+    for (int v : fv.views) key = combine(key, views.view_keys[std::size_t(v)]);
+    if (match[f] != kNone && old.evidence_key[match[f]] == key) {
+      out.reused.faces.push_back(std::uint32_t(f));
+      from.push_back(match[f]);
       continue;
     }
     changed.face_ids.push_back(std::uint32_t(f));
-    changed.faces.push_back(selection.faces[f]);
+    changed.faces.push_back(fv);
   }
   init_result(&out.reused.values, out.reused.faces.size(), options);
-  for (std::size_t j = 0; j < from.size(); ++j) copy_face(old, from[j], &out.reused.values, j);
-  out.reused.values.views_used = selection.image_views.size();
+  for (std::size_t k = 0; k < from.size(); ++k) copy_face(old, from[k], &out.reused.values, k);
+  out.reused.values.views_used = views.image_views.size();
   return out;
 }
 
 PriResult compute_pri(const Scene& scene, const PriOptions& options, const ProgressCallback& progress,
                       const PriPrevious* previous) {
   const auto start = std::chrono::steady_clock::now();
-  const PriViewSelection selection = select_pri_views(scene, options, progress);
   std::vector<PriPart> parts;
+  std::vector<std::uint64_t> view_keys;
+  std::size_t views_used = 0, reselected = 0;
   if (previous) {
-    PriReuse reuse = reuse_previous_pri(scene, options, selection, *previous);
+    PriReuse reuse = plan_incremental_pri(scene, options, *previous, progress);
+    reselected = reuse.selected;
+    view_keys = reuse.changed.view_keys;
+    views_used = reuse.changed.image_views.size();
     parts.push_back(std::move(reuse.reused));
     // No changed face: an empty selection would mean "every face".
     if (!reuse.changed.faces.empty()) parts.push_back(compute_pri_part(scene, options, reuse.changed, progress));
   } else {
+    const PriViewSelection selection = select_pri_views(scene, options, progress);
+    reselected = selection.faces.size();
+    view_keys = selection.view_keys;
+    views_used = selection.image_views.size();
     parts.push_back(compute_pri_part(scene, options, selection, progress));
   }
   PriResult result = assemble_pri(scene, options, parts);
-  result.views_used = selection.image_views.size();
+  result.views_used = views_used;
+  result.view_keys = view_keys;
+  result.options_key = pri_options_key(options);
+  result.reselected = reselected;
   report_progress(progress, 1.0, "pri");
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;

@@ -4,7 +4,9 @@
 #include "meshnbv/results.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
+#include <cstdio>
 
 #include <nlohmann/json.hpp>
 
@@ -139,6 +141,63 @@ TriangleMesh mesh_with_pri(const TriangleMesh& mesh, const PriResult& result) {
   return out;
 }
 
+namespace {
+
+std::string hex_key(std::uint64_t key) {
+  char hex[20];
+  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(key));
+  return hex;
+}
+
+// The 16-digit hex keys after `tag` in line c.
+std::vector<std::uint64_t> keys_after(const std::string& c, const std::string& tag) {
+  std::vector<std::uint64_t> keys;
+  std::size_t at = tag.size();
+  while (at < c.size()) {
+    while (at < c.size() && c[at] == ' ') ++at;
+    if (at >= c.size()) break;
+    std::size_t end = at;
+    std::uint64_t v = 0;
+    while (end < c.size() && std::isxdigit(static_cast<unsigned char>(c[end]))) {
+      const char ch = c[end];
+      v = v * 16 + std::uint64_t(std::isdigit(static_cast<unsigned char>(ch)) ? ch - '0' : (std::tolower(ch) - 'a' + 10));
+      ++end;
+    }
+    if (end - at != 16 || (end < c.size() && c[end] != ' '))
+      throw Error("malformed key in the PLY comment '" + c.substr(0, 80) + "'");
+    keys.push_back(v);
+    at = end;
+  }
+  return keys;
+}
+
+}  // namespace
+
+std::vector<std::string> pri_key_comments(const PriResult& result) {
+  std::vector<std::string> lines = {"meshnbv_pri_options_key " + hex_key(result.options_key)};
+  for (std::size_t i = 0; i < result.view_keys.size(); i += 64) {
+    std::string line = "meshnbv_pri_view_keys";
+    for (std::size_t k = i; k < std::min(result.view_keys.size(), i + 64); ++k) line += " " + hex_key(result.view_keys[k]);
+    lines.push_back(line);
+  }
+  return lines;
+}
+
+void read_pri_key_comments(const std::vector<std::string>& comments, PriResult* result) {
+  const std::string views = "meshnbv_pri_view_keys", options = "meshnbv_pri_options_key";
+  std::vector<std::uint64_t> keys;
+  for (const std::string& c : comments) {
+    if (c.compare(0, views.size() + 1, views + " ") == 0) {
+      for (std::uint64_t k : keys_after(c, views)) keys.push_back(k);
+    } else if (c.compare(0, options.size() + 1, options + " ") == 0) {
+      const std::vector<std::uint64_t> k = keys_after(c, options);
+      if (k.size() != 1) throw Error("malformed options key in the PLY comment '" + c.substr(0, 80) + "'");
+      result->options_key = k[0];
+    }
+  }
+  if (!keys.empty()) result->view_keys = keys;
+}
+
 std::string pri_summary_json(const PriResult& result, const PriOptions& options,
                              std::size_t worst_k) {
   using nlohmann::json;
@@ -166,6 +225,7 @@ std::string pri_summary_json(const PriResult& result, const PriOptions& options,
   j["options"] = json::parse(options_json(options, pri_option_table()));
   j["views_used"] = result.views_used;
   j["recomputed_faces"] = result.recomputed;
+  j["reselected_faces"] = result.reselected;
   j["images_decoded"] = result.images_decoded;
   j["seconds"] = result.seconds;
   return j.dump(2) + "\n";

@@ -112,6 +112,7 @@ struct PlyHeader {
   std::vector<PlyElement> elements;
   std::size_t data_offset = 0;  // first byte after end_header's newline
   long lines = 0;               // header line count (ascii data starts after)
+  std::vector<std::string> comments;  // text after "comment "
 };
 
 // --------------------------------------------------------------- header ---
@@ -143,7 +144,12 @@ class HeaderParser {
                     line_);
       std::vector<std::string> w = split_words(line);
       if (w.empty()) fail("empty header line");
-      if (w[0] == "comment" || w[0] == "obj_info") continue;
+      if (w[0] == "comment") {
+        const std::size_t at = line.find("comment") + 7;
+        header_.comments.push_back(at < line.size() ? line.substr(at + 1) : std::string());
+        continue;
+      }
+      if (w[0] == "obj_info") continue;
       if (w[0] == "end_header") break;
       if (w[0] == "format") {
         if (have_format) fail("second 'format' line");
@@ -734,6 +740,11 @@ std::string header_text(const TriangleMesh& mesh, const PlyWriteOptions& options
       if (ch == '\n' || ch == '\r') ch = ' ';  // a newline would end the comment line
     h += "comment " + comment + "\n";
   }
+  for (std::string comment : options.comments) {
+    for (char& ch : comment)
+      if (ch == '\n' || ch == '\r') ch = ' ';
+    h += "comment " + comment + "\n";
+  }
   const char* coord = options.double_precision ? "double" : "float";
   h += "element vertex " + std::to_string(mesh.vertices.size()) + "\n";
   for (const char* axis : {"x", "y", "z"})
@@ -840,6 +851,7 @@ TriangleMesh read_ply_with_info(const std::string& path, PlyFileInfo* info) {
   const std::string data = read_file(path);
   const PlyHeader header = HeaderParser(data, path).parse();
   if (info) {
+    info->comments = header.comments;
     info->coordinates = PlyCoordinateType::Float64;
     for (const PlyElement& e : header.elements) {
       if (e.name != "vertex") continue;

@@ -81,7 +81,9 @@ PriPrevious read_pri_previous(const std::string& path) {
   if (extension_lower(path) != ".ply")
     throw Error("the previous PRI must be a PLY file written by meshnbv pri", path);
   PriPrevious out;
-  out.mesh = read_ply(path);
+  PlyFileInfo info;
+  out.mesh = read_ply_with_info(path, &info);
+  read_pri_key_comments(info.comments, &out.result);
   const std::size_t F = out.mesh.num_faces();
   auto need = [&](const char* name) -> const std::vector<float>& {
     const std::vector<float>* a = out.mesh.face_attribute(name);

@@ -400,16 +400,20 @@ PriResult distributed_pri(const Scene& scene, const PriOptions& options, const P
   const auto start = std::chrono::steady_clock::now();
   std::vector<PriPart> parts;
   std::vector<std::uint32_t> faces;  // empty = all
+  std::size_t reselected = 0;
   if (previous) {
     // The reuse is decided here, on the whole mesh's view selection; the
     // ranks compute the changed faces.
-    const PriViewSelection selection = select_pri_views(scene, options, progress);
-    PriReuse reuse = reuse_previous_pri(scene, options, selection, *previous);
+    PriReuse reuse = plan_incremental_pri(scene, options, *previous, progress);
+    reselected = reuse.selected;
     parts.push_back(std::move(reuse.reused));
     faces = std::move(reuse.changed.face_ids);
     if (faces.empty()) {
       PriResult result = assemble_pri(scene, options, parts);
-      result.views_used = selection.image_views.size();
+      result.views_used = reuse.changed.image_views.size();
+      result.view_keys = reuse.changed.view_keys;
+      result.options_key = reuse.changed.options_key;
+      result.reselected = reselected;
       result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       return result;
     }
@@ -425,6 +429,9 @@ PriResult distributed_pri(const Scene& scene, const PriOptions& options, const P
       run_pri_job(write_scene(scene), write_pri_options(options), write_faces(faces), progress, &own, &stats);
   for (PriPart& p : computed) parts.push_back(std::move(p));
   PriResult result = assemble_pri(scene, options, parts);
+  result.view_keys = pri_view_keys(scene);
+  result.options_key = pri_options_key(options);
+  result.reselected = previous ? reselected : scene.mesh.num_faces();
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   report_progress(progress, 1.0, "pri");
   if (!quiet) {

@@ -91,9 +91,14 @@ struct PriResult {
   // same face (identical vertex positions, in order) with the same key has
   // the same value, bit for bit: incremental PRI (PriPrevious) reuses it.
   std::vector<std::uint64_t> evidence_key;
+  // pri_view_key of each view that took part, in order (what the keys
+  // above were formed from; incremental PRI compares them).
+  std::vector<std::uint64_t> view_keys;
+  std::uint64_t options_key = 0;  // pri_options_key of the options used
   std::size_t observed = 0, unobserved = 0, textureless = 0;
   std::size_t views_used = 0;    // views with an image that took part
   std::size_t recomputed = 0;    // faces computed by this call (the others were reused)
+  std::size_t reselected = 0;    // faces whose views this call selected (all, or fewer when incremental)
   std::size_t images_decoded = 0;  // image decodes this call needed (cache misses)
   double seconds = 0;
 };
@@ -129,10 +134,11 @@ struct PriViewSelection {
 // whole mesh, so each face's selection is the one of the whole-mesh call.
 // `caster`: the whole mesh's ray caster when the caller keeps one (tiles
 // of one mesh), else one is built.
+// `views_only`: only the views, their cameras and keys (no face).
 PriViewSelection select_pri_views(const Scene& scene, const PriOptions& options = {},
                                   const ProgressCallback& progress = {},
                                   const std::vector<std::uint32_t>& faces = {},
-                                  const RayCaster* caster = nullptr);
+                                  const RayCaster* caster = nullptr, bool views_only = false);
 
 PriResult compute_pri(const Scene& scene, const PriOptions& options = {},
                       const ProgressCallback& progress = {});
@@ -168,18 +174,32 @@ PriPart compute_pri_part(const Scene& scene, const PriOptions& options,
 // by compute_pri_part (all of them here).
 PriResult assemble_pri(const Scene& scene, const PriOptions& options, const std::vector<PriPart>& parts);
 
-// Incremental PRI's first step, given the view selection of every face of
-// the scene: the faces `previous` already holds (identical geometry and
-// evidence key), with their values, and a selection of the others alone.
+// Incremental PRI's first step: which faces of the new scene `previous`
+// already holds (identical geometry and evidence key), with their values,
+// and a view selection of the others alone. Views are selected only for
+// the faces a change may reach; the others keep their previous selection,
+// which is provably the same when
+// - the options key is the same (PriResult::options_key), and the
+//   previous view keys (PriResult::view_keys) come in the same order
+//   among the new ones (views added anywhere; none removed or changed);
+// - the mesh's bounding box is the same, bit for bit (it sets the
+//   visibility tolerance and the ray caster's frame);
+// - no view that is new, and no view through the edited geometry (the
+//   triangles removed or added), sees the face's tile: judged on the tiles'
+//   and the edits' bounding boxes projected into each pinhole camera.
+// Otherwise every face's views are selected again (still only the faces
+// whose key changed are sampled). `caster`: the new mesh's, when kept.
 struct PriReuse {
   PriPart reused;
   PriViewSelection changed;  // face_ids: the faces to compute (none when empty)
+  std::size_t selected = 0;  // faces whose views were selected again
 };
-PriReuse reuse_previous_pri(const Scene& scene, const PriOptions& options, const PriViewSelection& selection,
-                            const PriPrevious& previous);
+PriReuse plan_incremental_pri(const Scene& scene, const PriOptions& options, const PriPrevious& previous,
+                              const ProgressCallback& progress = {}, const RayCaster* caster = nullptr);
 
 // Compact groups of faces for distributing PRI: the ids of `faces` (empty
-// = every face) sorted along a Morton curve of their centroids and cut into
+// = every face) sorted along a Morton curve of their centroids (one scale on
+// every axis) and cut into
 // `count` runs of equal size (fewer when there are fewer faces); each run
 // ascending. Deterministic.
 std::vector<std::vector<std::uint32_t>> pri_tiles(const TriangleMesh& mesh, std::size_t count,
@@ -191,6 +211,8 @@ std::vector<std::vector<std::uint32_t>> pri_tiles(const TriangleMesh& mesh, std:
 // threads); and a face's key from them and its views' keys in order.
 std::uint64_t pri_view_key(const Scene& scene, std::size_t view);
 std::uint64_t pri_options_key(const PriOptions& options);
+// pri_view_key of every view with an image and used, in order.
+std::vector<std::uint64_t> pri_view_keys(const Scene& scene);
 
 // The similarity errors of the SPEC on two sample vectors of equal length:
 // SSD = mean squared difference; NCC error = (1 - rho) / 2, or a negative

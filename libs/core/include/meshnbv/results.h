@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <string>
 #include <utility>
 #include <vector>
@@ -46,6 +47,12 @@ PriEvidence pri_evidence(const PriResult& result, double low_texture_below = kLo
 // "pri_offset_precision", "pri_offset_pixel" (PriResult).
 TriangleMesh mesh_with_pri(const TriangleMesh& mesh, const PriResult& result);
 inline constexpr const char* kPriKeyAttributes[3] = {"pri_key_0", "pri_key_1", "pri_key_2"};
+// The PLY comment lines that carry PriResult::options_key and view_keys
+// beside mesh_with_pri's mesh ("meshnbv_pri_options_key <hex>", then
+// "meshnbv_pri_view_keys" and up to 64 keys in hex per line), and reading
+// them back into `result` (left alone when absent; Error when malformed).
+std::vector<std::string> pri_key_comments(const PriResult& result);
+void read_pri_key_comments(const std::vector<std::string>& comments, PriResult* result);
 
 // The PRI summary as JSON text: counts, the measure and its unit,
 // percentiles, histogram, the evidence (pri_evidence), the worst faces

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "meshnbv/mesh.h"
 
@@ -17,6 +18,7 @@ TriangleMesh read_ply(const std::string& path);
 enum class PlyCoordinateType { Integer, Float32, Float64 };
 struct PlyFileInfo {
   PlyCoordinateType coordinates = PlyCoordinateType::Float32;
+  std::vector<std::string> comments;  // each "comment" line's text
 };
 // (A name of its own: an overload of read_ply could not be passed as a template argument.)
 TriangleMesh read_ply_with_info(const std::string& path, PlyFileInfo* info);
@@ -38,6 +40,7 @@ struct PlyWriteOptions {
   bool exact_coordinates = false;
   bool overwrite = true;          // false: throw if the file exists
   std::string comment = "written by MeshNBV";
+  std::vector<std::string> comments;  // more comment lines, after `comment`
 };
 
 // Writes vertices, faces, every per-face attribute as a float property of
