@@ -156,6 +156,9 @@ void add_output_options(CLI::App* cmd, LoopArgs* a) {
   cmd->add_flag("--snapshots", a->options.snapshots,
                 "Pictures of the saved meshes and the reference (PNG, from two dataset views; red = "
                 "a face seen from behind)");
+  cmd->add_flag("--incremental-pri,!--no-incremental-pri", a->options.incremental_pri,
+                "nbv: compute each step's PRI only for the faces that changed since the last step")
+      ->capture_default_str();
   cmd->add_flag("--keep-work", a->options.keep_work, "Keep COLMAP's per-step models in <out>/work");
   cmd->add_flag("--overwrite", a->overwrite, "Write into an output folder holding results");
   cmd->add_flag("--quiet", a->quiet, "No progress output");

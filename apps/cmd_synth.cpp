@@ -31,7 +31,7 @@ void add_synth_command(CLI::App& app) {
   cmd->add_option("--mesh", a->mesh, "Mesh for the 'object' scene (.ply, .obj, .off)");
   cmd->add_option("--views", a->views, "Number of views")->capture_default_str();
   cmd->add_option("--layout", a->layout, "Camera layout")
-      ->check(CLI::IsMember({"ring", "hemisphere", "orbit"}))
+      ->check(CLI::IsMember({"ring", "hemisphere", "orbit", "grid"}))
       ->capture_default_str();
   cmd->add_option("--size", a->size, "Image size WxH")->capture_default_str();
   cmd->add_option("--degrade", a->degrade,

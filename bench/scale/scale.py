@@ -94,24 +94,44 @@ def same(a, b):
     return open(a, "rb").read() == open(b, "rb").read()
 
 
-def scene_with(src_json, dst_json, mesh, views=None):
+def scene_with(src_json, dst_json, mesh, views=None, stride=1, scale=1):
+    """The scene of `src_json` on `mesh`: its first `views` views, or every
+    `stride`-th; with `scale` 2, the photos upsampled twice (upscaled()) and
+    the intrinsics with them (pixel centres at integers: u' = 2u + 0.5)."""
     s = json.load(open(src_json))
     base = os.path.dirname(os.path.abspath(src_json))
     s["mesh"] = os.path.abspath(mesh)
     for v in s["views"]:
         v["image"] = os.path.join(base, v["image"])
+        if scale == 2:
+            v["image"] = upscaled(v["image"])
+            c = v["camera"]
+            c["fx"], c["fy"], c["cx"], c["cy"] = 2 * c["fx"], 2 * c["fy"], 2 * c["cx"] + 0.5, 2 * c["cy"] + 0.5
+            c["width"], c["height"] = 2 * c["width"], 2 * c["height"]
     if views is not None:
         s["views"] = s["views"][:views]
+    s["views"] = s["views"][::stride]
     json.dump(s, open(dst_json, "w"))
+
+
+def upscaled(path):
+    """`path` upsampled twice (bicubic), cached in WORK/up2."""
+    from PIL import Image
+    out = os.path.join(WORK, "up2", os.path.basename(path))
+    if not os.path.exists(out):
+        os.makedirs(os.path.dirname(out), exist_ok=True)
+        im = Image.open(path)
+        im.resize((2 * im.width, 2 * im.height), Image.BICUBIC).save(out)
+    return out
 
 
 def main():
     results = {"machine": {"cpus": os.cpu_count(), "platform": platform.platform()}, "runs": []}
-    city = os.path.join(WORK, "city")
+    city = os.path.join(WORK, "city_grid")
     if not os.path.exists(os.path.join(city, "scene.json")):
         shutil.rmtree(city, ignore_errors=True)
         run([MESHNBV, "synth", "city", "--edge-length", "0.2", "--views", "32", "--size", "1024x768",
-             "--out", city, "--quiet"])
+             "--layout", "grid", "--out", city, "--quiet"])
     big = os.path.join(WORK, "big.ply")
     if not os.path.exists(big):
         v, f = read_ply(os.path.join(city, "degraded.ply"))
@@ -121,7 +141,8 @@ def main():
     scene_with(os.path.join(city, "scene.json"), scene, big)
     faces = len(read_ply(big)[1])
     results["scene"] = {"faces": faces, "views": 32, "image": "1024x768", "from": "synthetic city, edge 0.2 m, "
-                        "each triangle split in two along its longest edge"}
+                        "each triangle split in two along its longest edge; a survey flight of nadir photos "
+                        "(synth --layout grid)"}
     print("scene: %d faces, 32 views" % faces, flush=True)
 
     # 1. One process against 1, 2, 4 ranks.
@@ -178,28 +199,36 @@ def main():
         sel = re.search(r"views selected again for (\d+) faces", out)
         results["runs"].append({"what": "incremental: " + name, "full_seconds": t_full,
                                 "incremental_seconds": t_inc, "recomputed": int(m.group(1)),
+                                "reselected": int(sel.group(1)),
                                 "faces": int(m.group(2)), "identical": same(full, inc),
                                 "edited_vertices": int(near.sum()) if name == "local edit" else 0})
         print("%s: full %.1f s, incremental %.1f s, recomputed %s of %s, identical %s" % (
             name, t_full, t_inc, m.group(1), m.group(2), same(full, inc)), flush=True)
 
-    # 3. Cost-model points (one process, 2 threads): faces x views.
-    for views in (8, 16, 32):
-        sub = os.path.join(WORK, "views%d.json" % views)
-        scene_with(os.path.join(city, "scene.json"), sub, big, views=views)
-        summary = os.path.join(WORK, "views%d_summary.json" % views)
+    # 3. Cost-model points (one process, 2 threads): every 4th, 2nd and
+    # every view at 1024x768, every 2nd and every view at 2048x1536.
+    for stride, scale in ((4, 1), (2, 1), (1, 1), (2, 2), (1, 2)):
+        sub = os.path.join(WORK, "cost_%d_%d.json" % (stride, scale))
+        scene_with(os.path.join(city, "scene.json"), sub, big, stride=stride, scale=scale)
+        views = len(json.load(open(sub))["views"])
+        summary = os.path.join(WORK, "cost_summary.json")
         ply = os.path.join(WORK, "views.ply")
         t, _, err = run(["/usr/bin/time", "-f", "peak_kb %M", MESHNBV, "pri", sub, "--out", ply, "--json", summary,
                          "--overwrite", "--quiet"])
         s = json.load(open(summary))
         per_face = read_ply(ply, fields=True)
         seen = per_face["pri_views"] >= 2
+        pixels = 1024 * 768 * scale * scale
         results["runs"].append({"what": "cost point", "views": views, "faces": faces, "seconds": t,
+                                "image": "%dx%d" % (1024 * scale, 768 * scale), "pixels": pixels,
                                 "peak_mb": float(re.search(r"peak_kb (\d+)", err).group(1)) / 1024,
                                 "observed": s["faces"]["observed"], "pri_seconds": s["seconds"],
+                                "images_decoded": s["images_decoded"],
+                                "face_views": float(per_face["pri_views"].sum()),
+                                "samples": float((per_face["pri_views"] * per_face["pri_samples"]).sum()),
                                 "mean_views": float(per_face["pri_views"].mean()),
                                 "mean_samples": float(per_face["pri_samples"][seen].mean())})
-        print("cost point: %d views, %.1f s" % (views, t), flush=True)
+        print("cost point: %d views of %dx%d, %.1f s" % (views, 1024 * scale, 768 * scale, t), flush=True)
     json.dump(results, open(os.path.join(OUT, "runs.json"), "w"), indent=1)
     table(results)
     subprocess.run(["/usr/bin/python3", os.path.join(os.path.dirname(os.path.abspath(__file__)), "model.py")],
@@ -224,12 +253,14 @@ def table(results):
                 r["what"][13:], r["full_seconds"], r["incremental_seconds"], r["recomputed"],
                 100.0 * r["recomputed"] / r["faces"], r["reselected"], 100.0 * r["reselected"] / r["faces"],
                 r["faces"], "yes" if r["identical"] else "NO"))
-    rows += ["", "| cost point: views | faces | mean views per face | wall s | PRI s | peak MB |",
-             "|---|---|---|---|---|---|"]
+    rows += ["", "| cost point: views | image | faces | mean views per face | mean samples per face-view | "
+             "images decoded | wall s | PRI s | peak MB |",
+             "|---|---|---|---|---|---|---|---|---|"]
     for r in results["runs"]:
         if r["what"] == "cost point":
-            rows.append("| %d | %d | %.2f | %.1f | %.1f | %.0f |" % (
-                r["views"], r["faces"], r["mean_views"], r["seconds"], r["pri_seconds"], r["peak_mb"]))
+            rows.append("| %d | %s | %d | %.2f | %.1f | %d | %.1f | %.1f | %.0f |" % (
+                r["views"], r["image"], r["faces"], r["mean_views"], r["mean_samples"], r["images_decoded"],
+                r["seconds"], r["pri_seconds"], r["peak_mb"]))
     s = results["scene"]
     text = ("Scene: %d faces (%s), %d views of %s. Machine: %d cores.\n\n" % (
         s["faces"], s["from"], s["views"], s["image"], results["machine"]["cpus"])) + "\n".join(rows) + "\n"

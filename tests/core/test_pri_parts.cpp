@@ -319,3 +319,31 @@ TEST(PriIncremental, LocalEditSelectsViewsOnlyWhereItMayReach) {
   EXPECT_LE(plan.selected, seen_with_edit + 2 * 256);
   EXPECT_LT(plan.selected, after.mesh.num_faces() / 4);
 }
+
+// On the strip, one view added: views are selected again only for the faces
+// that lie wholly inside the new view's image, and the result is exact.
+TEST(PriIncremental, AddedViewSelectsViewsOnlyForTheFacesInItsImage) {
+  const Scene all = strip();
+  Scene fewer = all;
+  fewer.views.erase(fewer.views.begin() + 3);
+  const PriOptions o;
+  const PriPrevious previous{fewer.mesh, compute_pri(fewer, o)};
+  const PriReuse plan = plan_incremental_pri(all, o, previous);
+  const PriResult incremental = compute_pri(all, o, {}, &previous);
+  expect_identical(compute_pri(all, o), incremental);
+  EXPECT_GT(incremental.recomputed, 0u);
+  EXPECT_GE(plan.selected, incremental.recomputed);
+  const PinholeCamera& added = all.views[3].camera;
+  std::size_t inside = 0;
+  for (const Face& f : all.mesh.faces) {
+    bool in = true;
+    for (int k = 0; k < 3; ++k) {
+      Vec2 p;
+      in = in && added.project(all.mesh.vertices[std::size_t(f[k])], &p) && added.in_image(p);
+    }
+    inside += in;
+  }
+  ASSERT_GT(inside, 0u);
+  EXPECT_LE(plan.selected, inside);
+  EXPECT_LT(plan.selected, all.mesh.num_faces() / 4);
+}

@@ -59,6 +59,66 @@ TEST(Generators, ClosedOrBoundedAndSeenByEveryCamera) {
   }
 }
 
+// The survey grid: as many cameras as asked, above the scene, each seeing
+// part of it (not every corner of the box) with the image filled by it,
+// neighbours along a row overlapping (a point seen by both), and together
+// covering the whole footprint.
+TEST(Generators, GridLayoutSurveysTheSceneInOverlappingParts) {
+  const TriangleMesh mesh = synth::make_scene_mesh("city");
+  const RayCaster caster(mesh);
+  const BoundingBox box = mesh.bounding_box();
+  for (int count : {7, 16, 30}) {
+    SCOPED_TRACE(count);
+    synth::CameraSetOptions co;
+    co.layout = synth::CameraLayout::Grid;
+    co.count = count;
+    const auto cams = synth::make_cameras(mesh, co);
+    ASSERT_EQ(cams.size(), std::size_t(count));
+    for (const auto& cam : cams) {
+      ASSERT_NO_THROW(cam.check());
+      EXPECT_GT(cam.center().z(), box.max.z());
+      int hits = 0;
+      for (int gy = 0; gy < 12; ++gy)
+        for (int gx = 0; gx < 16; ++gx) {
+          const Ray ray = cam.viewing_ray({(gx + 0.5) * cam.width / 16.0, (gy + 0.5) * cam.height / 12.0});
+          RayHit hit;
+          hits += caster.intersect(ray.origin, ray.direction, &hit) ? 1 : 0;
+        }
+      EXPECT_GT(hits, 192 / 8) << "the scene should be in a survey photo (a corner photo: a quarter)";
+    }
+    if (count >= 16) {
+      int partial = 0;  // photos that do not see every corner of the box
+      for (const auto& cam : cams) {
+        bool all_in = true;
+        for (const Vec3& corner : box.corners()) {
+          Vec2 px;
+          all_in = all_in && cam.project(corner, &px) && cam.in_image(px);
+        }
+        partial += !all_in;
+      }
+      EXPECT_EQ(partial, count) << "each survey photo sees only part of the scene";
+    }
+    // Every point of the footprint's floor, on a 20 x 20 grid, is in two
+    // photos at least (stereo); of 30 photos, none sees half of them.
+    std::vector<int> seen_by(cams.size(), 0);
+    for (int gy = 0; gy < 20; ++gy)
+      for (int gx = 0; gx < 20; ++gx) {
+        const Vec3 p(box.min.x() + (gx + 0.5) / 20 * (box.max.x() - box.min.x()),
+                     box.min.y() + (gy + 0.5) / 20 * (box.max.y() - box.min.y()), box.min.z());
+        int seen = 0;
+        for (std::size_t k = 0; k < cams.size(); ++k) {
+          Vec2 px;
+          if (cams[k].project(p, &px) && cams[k].in_image(px)) ++seen, ++seen_by[k];
+        }
+        EXPECT_GE(seen, 2) << p.transpose();
+      }
+    if (count >= 30)
+      for (int n : seen_by) EXPECT_LT(n, 400 / 2) << "a survey photo sees a part of the floor";
+  }
+  EXPECT_EQ(synth::parse_camera_layout("grid"), synth::CameraLayout::Grid);
+  EXPECT_EQ(synth::camera_layout_name(synth::CameraLayout::Grid), "grid");
+}
+
 TEST(Generators, SameSeedSameMeshDifferentSeedDifferent) {
   synth::GeneratorOptions a, b;
   a.seed = b.seed = 5;

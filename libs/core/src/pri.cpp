@@ -19,6 +19,7 @@
 #include "meshnbv/error.h"
 #include "meshnbv/raycaster.h"
 #include "meshnbv/results.h"
+#include "percentiles.h"
 
 namespace meshnbv {
 
@@ -1082,19 +1083,31 @@ PriReuse plan_incremental_pri(const Scene& scene, const PriOptions& options, con
   // The views and their keys (select_pri_views' checks), no face yet.
   const PriViewSelection views = select_pri_views(scene, options, {}, {}, nullptr, true);
 
-  // Faces of the new mesh with an identical face in the previous one.
-  std::unordered_map<FaceGeometry, std::uint32_t, FaceGeometryHash> by_geometry;
-  by_geometry.reserve(G);
-  for (std::size_t g = 0; g < G; ++g)
-    if (old.evidence_key[g] != 0) by_geometry.emplace(face_geometry(previous.mesh, g), std::uint32_t(g));
+  // Faces of the new mesh with an identical face in the previous one: first
+  // the face at the same index (an edit usually keeps the face list), then
+  // the rest by geometry.
   constexpr std::uint32_t kNone = 0xffffffffu;
   std::vector<std::uint32_t> match(F, kNone);
   std::vector<std::uint8_t> old_matched(G, 0);
-  for (std::size_t f = 0; f < F; ++f) {
-    const auto it = by_geometry.find(face_geometry(mesh, f));
-    if (it == by_geometry.end()) continue;
-    match[f] = it->second;
-    old_matched[it->second] = 1;
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, std::min(F, G)), [&](const auto& r) {
+    for (std::size_t f = r.begin(); f < r.end(); ++f)
+      if (old.evidence_key[f] != 0 && face_geometry(mesh, f) == face_geometry(previous.mesh, f)) {
+        match[f] = std::uint32_t(f);
+        old_matched[f] = 1;
+      }
+  });
+  {
+    std::unordered_map<FaceGeometry, std::uint32_t, FaceGeometryHash> by_geometry;
+    for (std::size_t g = 0; g < G; ++g)
+      if (!old_matched[g] && old.evidence_key[g] != 0) by_geometry.emplace(face_geometry(previous.mesh, g), std::uint32_t(g));
+    if (!by_geometry.empty())
+      for (std::size_t f = 0; f < F; ++f) {
+        if (match[f] != kNone) continue;
+        const auto it = by_geometry.find(face_geometry(mesh, f));
+        if (it == by_geometry.end()) continue;
+        match[f] = it->second;
+        old_matched[it->second] = 1;
+      }
   }
 
   // The faces whose views must be selected again.
@@ -1119,15 +1132,19 @@ PriReuse plan_incremental_pri(const Scene& scene, const PriOptions& options, con
     constexpr std::size_t kTileFaces = 256;
     const auto tiles = pri_tiles(mesh, (F + kTileFaces - 1) / kTileFaces);
     std::vector<BoundingBox> tile_boxes(tiles.size());
-    for (std::size_t t = 0; t < tiles.size(); ++t)
-      for (std::uint32_t f : tiles[t])
-        for (int k = 0; k < 3; ++k) tile_boxes[t].extend(mesh.vertices[mesh.faces[f][k]]);
-    std::vector<std::uint8_t> tile_suspect(tiles.size(), 0);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, tiles.size()), [&](const auto& r) {
+      for (std::size_t t = r.begin(); t < r.end(); ++t)
+        for (std::uint32_t f : tiles[t])
+          for (int k = 0; k < 3; ++k) tile_boxes[t].extend(mesh.vertices[mesh.faces[f][k]]);
+    });
+    const std::vector<Vec3> normals = mesh.face_normals();
+    const double min_cosine = std::cos(options.max_incidence_angle * M_PI / 180.0);
     std::size_t j = 0;  // position in old.view_keys
     for (std::size_t i = 0; i < views.cameras.size(); ++i) {
       const bool added = !(j < old.view_keys.size() && old.view_keys[j] == views.view_keys[i]);
       if (!added) ++j;
       const PinholeCamera& cam = views.cameras[i];
+      const Vec3 centre = cam.center();
       std::vector<std::array<double, 6>> edit_rects;
       bool unbounded = false;
       for (const BoundingBox& b : edits) {
@@ -1137,29 +1154,57 @@ PriReuse plan_incremental_pri(const Scene& scene, const PriOptions& options, con
         else edit_rects.push_back(r);
       }
       if (!added && !unbounded && edit_rects.empty()) continue;
-      for (std::size_t t = 0; t < tiles.size(); ++t) {
-        if (tile_suspect[t] || !may_see_box(cam, tile_boxes[t])) continue;
-        if (added || unbounded) {
-          tile_suspect[t] = 1;
-          continue;
-        }
-        // A segment from the camera to a point of the tile projects to that
-        // point's pixel: an edit can hide it only where their projections meet.
-        std::array<double, 6> r;
-        if (!projected_rect(cam, tile_boxes[t], &r)) {
-          tile_suspect[t] = 1;
-          continue;
-        }
-        for (const auto& e : edit_rects)
-          if (may_occlude(r, e, 2.0)) {
-            tile_suspect[t] = 1;
-            break;
+      // Tile by tile (a face is in one tile: no two threads write one flag).
+      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, tiles.size()), [&](const auto& range) {
+        std::vector<const std::array<double, 6>*> near;
+        for (std::size_t t = range.begin(); t < range.end(); ++t) {
+          if (!may_see_box(cam, tile_boxes[t])) continue;
+          // A segment from the camera to a point of a face projects to that
+          // point's pixel: an edit can hide it only where their projections
+          // meet and the edit is not wholly behind it.
+          near.clear();
+          bool all = added || unbounded;
+          std::array<double, 6> r;
+          if (!all && !projected_rect(cam, tile_boxes[t], &r)) all = true;
+          if (!all) {
+            for (const auto& e : edit_rects)
+              if (may_occlude(r, e, 2.0)) near.push_back(&e);
+            if (near.empty()) continue;
           }
-      }
+          for (std::uint32_t f : tiles[t]) {
+            if (suspect[f]) continue;
+            // A view the face cannot take whatever hides it (select_views'
+            // own tests: a corner outside the image, facing away, grazing).
+            const Face& face = mesh.faces[f];
+            bool in = true;
+            for (int k = 0; k < 3 && in; ++k) {
+              Vec2 px;
+              in = cam.project(mesh.vertices[face[k]], &px) && cam.in_image(px);
+            }
+            if (!in) continue;
+            const Vec3 centroid = mesh.face_centroid(f);
+            if (!(normals[f].dot(centre - centroid) > 0)) continue;
+            if (normals[f].dot((centre - centroid).normalized()) < min_cosine) continue;
+            if (all) {
+              suspect[f] = 1;
+              continue;
+            }
+            BoundingBox fb;
+            for (int k = 0; k < 3; ++k) fb.extend(mesh.vertices[face[k]]);
+            std::array<double, 6> fr;
+            if (!projected_rect(cam, fb, &fr)) {
+              suspect[f] = 1;
+              continue;
+            }
+            for (const auto* e : near)
+              if (may_occlude(fr, *e, 2.0)) {
+                suspect[f] = 1;
+                break;
+              }
+          }
+        }
+      });
     }
-    for (std::size_t t = 0; t < tiles.size(); ++t)
-      if (tile_suspect[t])
-        for (std::uint32_t f : tiles[t]) suspect[f] = 1;
   }
   std::vector<std::uint32_t> again;
   for (std::size_t f = 0; f < F; ++f)
@@ -1261,19 +1306,13 @@ PriSummary summarize_pri(const PriResult& result, std::size_t worst_k, int bins)
   for (std::size_t f = 0; f < result.pri.size(); ++f)
     if (!std::isnan(result.pri[f])) values.emplace_back(result.pri[f], int(f));
   if (values.empty()) return s;
-  std::vector<float> sorted;
+  std::vector<float> sorted;  // reordered by the percentiles
+  sorted.reserve(values.size());
   for (const auto& v : values) sorted.push_back(v.first);
-  std::sort(sorted.begin(), sorted.end());
-  for (double p : {0.0, 5.0, 25.0, 50.0, 75.0, 95.0, 99.0, 100.0}) {
-    // Linear interpolation between closest ranks.
-    const double pos = p / 100.0 * double(sorted.size() - 1);
-    const std::size_t i = std::size_t(pos);
-    const double frac = pos - double(i);
-    const double v = i + 1 < sorted.size() ? sorted[i] * (1 - frac) + sorted[i + 1] * frac : sorted[i];
-    s.percentiles.emplace_back(p, v);
-  }
-  s.histogram_min = sorted.front();
-  s.histogram_max = sorted.back();
+  s.percentiles = detail::interpolated_percentiles(sorted, {0.0, 5.0, 25.0, 50.0, 75.0, 95.0, 99.0, 100.0});
+  const auto [lowest, highest] = std::minmax_element(sorted.begin(), sorted.end());
+  s.histogram_min = *lowest;
+  s.histogram_max = *highest;
   s.histogram.assign(std::size_t(std::max(1, bins)), 0);
   const double width = (s.histogram_max - s.histogram_min) / double(s.histogram.size());
   for (float v : sorted) {
@@ -1281,9 +1320,9 @@ PriSummary summarize_pri(const PriResult& result, std::size_t worst_k, int bins)
     ++s.histogram[std::min(b, s.histogram.size() - 1)];
   }
   // Worst first; ties by face id for determinism.
-  std::sort(values.begin(), values.end(), [](const auto& a, const auto& b) {
-    return a.first != b.first ? a.first > b.first : a.second < b.second;
-  });
+  const std::size_t k_worst = std::min(worst_k, values.size());
+  std::partial_sort(values.begin(), values.begin() + std::ptrdiff_t(k_worst), values.end(),
+                    [](const auto& a, const auto& b) { return a.first != b.first ? a.first > b.first : a.second < b.second; });
   for (std::size_t k = 0; k < std::min(worst_k, values.size()); ++k)
     s.worst.push_back({values[k].second, values[k].first, result.pri_views[std::size_t(values[k].second)]});
   return s;

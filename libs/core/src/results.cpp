@@ -3,6 +3,8 @@
 // docs/formats.md).
 #include "meshnbv/results.h"
 
+#include "percentiles.h"
+
 #include <algorithm>
 #include <cctype>
 #include <cmath>
@@ -47,16 +49,7 @@ void check_sizes(const PriResult& r) {
 // (percent, value) at 0, 5, 25, 50, 75, 95, 100, linear between closest
 // ranks (as summarize_pri); empty for no values.
 std::vector<std::pair<double, double>> percentiles(std::vector<double> v) {
-  std::vector<std::pair<double, double>> out;
-  if (v.empty()) return out;
-  std::sort(v.begin(), v.end());
-  for (double p : {0.0, 5.0, 25.0, 50.0, 75.0, 95.0, 100.0}) {
-    const double pos = p / 100.0 * double(v.size() - 1);
-    const std::size_t i = std::size_t(pos);
-    const double frac = pos - double(i);
-    out.emplace_back(p, i + 1 < v.size() ? v[i] * (1 - frac) + v[i + 1] * frac : v[i]);
-  }
-  return out;
+  return detail::interpolated_percentiles(v, {0.0, 5.0, 25.0, 50.0, 75.0, 95.0, 100.0});
 }
 
 json percentiles_json(const std::vector<std::pair<double, double>>& pct) {

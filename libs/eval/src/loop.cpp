@@ -500,6 +500,7 @@ nlohmann::json loop_json(const LoopContext& ctx, const LoopResult& result, const
                   {"facet_support", facet_support_name(options.delaunay.facet_support)},
                   {"min_point_views", options.delaunay.min_views_per_point},
                   {"max_point_error", options.max_point_error},
+                  {"incremental_pri", options.incremental_pri},
                   {"matcher", options.colmap.matcher}};
   // nbv: the PRI and suggestion options, each table under its one names.
   j["options"]["pri"] = nlohmann::json::parse(options_json(options.pri, pri_option_table()));
@@ -552,7 +553,7 @@ void choose_by_nbv(const LoopContext& ctx, const Selection& sel, const TriangleM
   scene.images = state.images;
   for (int i : sel.selected) scene.views.push_back(ctx.ws.views()[std::size_t(i)]);
   const auto tp = std::chrono::steady_clock::now();
-  const PriPrevious* previous = state.previous_pri.get();
+  const PriPrevious* previous = ctx.options.incremental_pri ? state.previous_pri.get() : nullptr;
   PriResult pri = ctx.options.pri_engine ? ctx.options.pri_engine(scene, ctx.options.pri, previous)
                                          : compute_pri(scene, ctx.options.pri, {}, previous);
   choice->seconds_pri = std::chrono::duration<double>(std::chrono::steady_clock::now() - tp).count();

@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <iostream>
 #include <sstream>
+#include <mutex>
 #include <thread>
 
 #include "meshnbv/error.h"
@@ -118,11 +119,16 @@ struct RankStats {
 };
 
 // Rank 0's side of the tile queue: hands tile indices to the other ranks
-// from the same counter rank 0 takes its own tiles from, until every other
-// rank has been told "none left" or has failed.
+// from the same queue rank 0 takes its own tiles from, until every other
+// rank has been told "none left" or has failed. The tiles (in Morton order)
+// are cut into one run per rank, so that a rank's tiles lie together and
+// need few of the photos; a rank whose run is done takes the last tile of
+// the longest run left (dynamic balance, locality kept).
 class Dispatcher {
  public:
-  Dispatcher(std::size_t tiles, int ranks) : tiles_(tiles), ranks_(ranks), busy_(std::size_t(ranks), 0) {
+  Dispatcher(std::size_t tiles, int ranks) : ranks_(ranks), busy_(std::size_t(ranks), 0) {
+    for (int r = 0; r < ranks; ++r)
+      runs_.push_back({tiles * std::size_t(r) / std::size_t(ranks), tiles * std::size_t(r + 1) / std::size_t(ranks)});
     if (ranks_ > 1) thread_ = std::thread([this] { run(); });
   }
   ~Dispatcher() { join(); }
@@ -130,17 +136,23 @@ class Dispatcher {
     if (thread_.joinable()) thread_.join();
   }
   // The next tile for rank 0, or -1.
-  std::int64_t take() { return next(); }
+  std::int64_t take() { return next(0); }
   void finished_own() { ++finished_; }
   void fail() { failed_ = true; }
   std::size_t finished() const { return finished_.load(); }
   std::string error() const { return error_; }
 
  private:
-  std::int64_t next() {
+  std::int64_t next(int rank) {
     if (failed_) return -1;
-    const std::size_t t = counter_.fetch_add(1);
-    return t < tiles_ ? std::int64_t(t) : -1;
+    std::lock_guard<std::mutex> lock(mutex_);
+    auto& own = runs_[std::size_t(rank)];
+    if (own.first < own.second) return std::int64_t(own.first++);
+    auto longest = std::max_element(runs_.begin(), runs_.end(), [](const auto& a, const auto& b) {
+      return a.second - a.first < b.second - b.first;
+    });
+    if (longest->first == longest->second) return -1;
+    return std::int64_t(--longest->second);
   }
   void run() {
     try {
@@ -167,7 +179,7 @@ class Dispatcher {
           --open;
           continue;
         }
-        std::int64_t tile = next();
+        std::int64_t tile = next(from);
         busy_[std::size_t(from)] = tile >= 0;
         check(MPI_Send(&tile, 1, MPI_INT64_T, from, kTagTile, MPI_COMM_WORLD), "send");
         if (tile < 0) --open;
@@ -178,10 +190,11 @@ class Dispatcher {
     }
   }
 
-  const std::size_t tiles_;
   const int ranks_;
   std::vector<char> busy_;  // per rank: holds a tile (dispatcher thread only)
-  std::atomic<std::size_t> counter_{0}, finished_{0};
+  std::mutex mutex_;
+  std::vector<std::pair<std::size_t, std::size_t>> runs_;  // per rank: [first, end) of its tiles left
+  std::atomic<std::size_t> finished_{0};
   std::atomic<bool> failed_{false};
   std::string error_;
   std::thread thread_;

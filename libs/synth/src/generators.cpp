@@ -225,8 +225,53 @@ CameraLayout parse_camera_layout(const std::string& name) {
   if (name == "ring") return CameraLayout::Ring;
   if (name == "hemisphere") return CameraLayout::Hemisphere;
   if (name == "orbit") return CameraLayout::Orbit;
-  throw Error("unknown camera layout '" + name + "' (expected ring, hemisphere or orbit)");
+  if (name == "grid") return CameraLayout::Grid;
+  throw Error("unknown camera layout '" + name + "' (expected ring, hemisphere, orbit or grid)");
 }
+
+std::string camera_layout_name(CameraLayout layout) {
+  switch (layout) {
+    case CameraLayout::Ring: return "ring";
+    case CameraLayout::Hemisphere: return "hemisphere";
+    case CameraLayout::Orbit: return "orbit";
+    case CameraLayout::Grid: return "grid";
+  }
+  return "ring";
+}
+
+namespace {
+
+// A survey flight's cameras (make_cameras' `grid`): nadir photos on a
+// lawnmower grid whose outer rows and columns lie over the footprint's
+// border, high enough that each photo reaches 1.25 grid steps from its
+// centre on the floor (neighbours overlap by 60%, every point of the floor
+// is in two photos at least along each axis).
+std::vector<PinholeCamera> grid_cameras(const BoundingBox& box, const CameraSetOptions& o, double fx) {
+  const Vec3 size = box.max - box.min;
+  const double wx = std::max(size.x(), 1e-9 * box.diagonal()), wy = std::max(size.y(), 1e-9 * box.diagonal());
+  const int cols = std::clamp(int(std::lround(std::sqrt(o.count * wx / wy))), 1, o.count);
+  const int rows = (o.count + cols - 1) / cols;
+  auto step = [](double w, int n) { return n > 1 ? w / (n - 1) : w; };
+  auto at = [](double lo, double w, int i, int n) { return n > 1 ? lo + w * i / (n - 1) : lo + 0.5 * w; };
+  // The widest step along x (a short last row spreads wider) and along y.
+  const int last = o.count - (rows - 1) * cols;
+  const double sx = step(wx, std::min(cols, last)), sy = step(wy, rows);
+  const double tan_h = 0.5 * o.width / fx, tan_v = 0.5 * o.height / fx;
+  const double height = 1.25 * std::max(sx / tan_h, sy / tan_v);
+  const double z = std::max(box.min.z() + height, box.max.z() + 0.25 * std::max(sx, sy));
+  std::vector<PinholeCamera> cams;
+  for (int k = 0; k < o.count; ++k) {
+    const int row = k / cols, c = k % cols;
+    const int in_row = std::min(cols, o.count - row * cols);
+    const int col = row % 2 ? in_row - 1 - c : c;  // lawnmower: every other row backwards
+    const Vec3 eye(at(box.min.x(), wx, col, in_row), at(box.min.y(), wy, row, rows), z);
+    cams.push_back(PinholeCamera::look_at(eye, eye - Vec3(0, 0, 1), Vec3(0, 1, 0), fx, fx, (o.width - 1) / 2.0,
+                                          (o.height - 1) / 2.0, o.width, o.height));
+  }
+  return cams;
+}
+
+}  // namespace
 
 std::vector<PinholeCamera> make_cameras(const TriangleMesh& mesh, const CameraSetOptions& o) {
   if (o.count < 1) throw Error("camera count must be >= 1");
@@ -242,6 +287,7 @@ std::vector<PinholeCamera> make_cameras(const TriangleMesh& mesh, const CameraSe
   const double vfov = 2 * std::atan(0.5 * o.height / fx);
   const double narrow = std::min(hfov, vfov);
   const double distance = radius / std::sin(std::clamp(o.fill, 0.05, 1.0) * narrow / 2);  // always fits
+  if (o.layout == CameraLayout::Grid) return grid_cameras(box, o, fx);
 
   // (azimuth, elevation) pairs for the layout.
   std::vector<std::pair<double, double>> dirs;
@@ -277,6 +323,7 @@ std::vector<PinholeCamera> make_cameras(const TriangleMesh& mesh, const CameraSe
       }
       break;
     }
+    case CameraLayout::Grid: break;  // above
   }
   // One distance for the whole set: the smallest at which, from every
   // direction, the bounding box's corners fall inside the central `fill`

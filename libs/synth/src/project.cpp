@@ -116,9 +116,7 @@ std::string describe(const SynthOptions& o) {
   std::ostringstream ss;
   ss << "scene " << o.scene << (o.mesh_file.empty() ? "" : " (" + o.mesh_file + ")") << ", seed "
      << o.seed << ", " << o.cameras.count << " views, layout "
-     << (o.cameras.layout == CameraLayout::Ring
-             ? "ring"
-             : o.cameras.layout == CameraLayout::Hemisphere ? "hemisphere" : "orbit")
+     << camera_layout_name(o.cameras.layout)
      << ", " << o.cameras.width << "x" << o.cameras.height << ", " << o.render.samples_per_pixel
      << " samples per pixel";
   return ss.str();

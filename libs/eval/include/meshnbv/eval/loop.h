@@ -87,6 +87,9 @@ struct LoopOptions {
   // previous step either way (`previous` may be null).
   std::function<PriResult(const Scene&, const PriOptions&, const PriPrevious* previous)> pri_engine;
   CandidateScorer candidate_scorer;  // likewise for scoring candidates; empty = here
+  // nbv: compute each step's PRI from the previous step's, recomputing only
+  // the faces that changed (equal to a full computation); false = every face.
+  bool incremental_pri = true;
 
   void check() const;
 };

@@ -43,8 +43,10 @@ TriangleMesh make_prism(const Vec3& base_center, double radius, double height, i
 // A flat rectangle at height z facing +z (bounded: its border is a boundary).
 TriangleMesh make_ground(const Vec3& min, const Vec3& max, double edge_length, int material);
 
-enum class CameraLayout { Ring, Hemisphere, Orbit };
-CameraLayout parse_camera_layout(const std::string& name);  // "ring", "hemisphere", "orbit"
+enum class CameraLayout { Ring, Hemisphere, Orbit, Grid };
+// "ring", "hemisphere", "orbit", "grid"
+CameraLayout parse_camera_layout(const std::string& name);
+std::string camera_layout_name(CameraLayout layout);
 
 struct CameraSetOptions {
   CameraLayout layout = CameraLayout::Ring;
@@ -58,7 +60,10 @@ struct CameraSetOptions {
   std::uint64_t seed = 1;           // small deterministic jitter of the orbit
 };
 
-// Cameras looking at the mesh's bounding-box centre, world +z up.
+// Cameras looking at the mesh's bounding-box centre, world +z up; `grid`
+// instead flies a survey over the box: nadir photos on a lawnmower grid
+// over its footprint, high enough for 60% overlap between neighbours, each
+// seeing only part of the scene.
 std::vector<PinholeCamera> make_cameras(const TriangleMesh& mesh, const CameraSetOptions& options);
 
 }  // namespace meshnbv::synth
