@@ -15,6 +15,9 @@ import numpy as np
 BIN, WORK, OUT = sys.argv[1:4]
 MESHNBV = os.path.join(BIN, "meshnbv")
 MPI = os.path.join(BIN, "meshnbv-mpi")
+# The survey: 128 nadir photos of 512x384 (an 11 x 12 grid), so that each
+# photo sees a small part of the city and a rank's tiles need part of them.
+VIEWS, SIZE = 128, (512, 384)
 
 
 def read_ply(path, fields=False):
@@ -115,11 +118,10 @@ def scene_with(src_json, dst_json, mesh, views=None, stride=1, scale=1):
 
 
 def upscaled(path):
-    """`path` upsampled twice (bicubic), cached in WORK/up2."""
+    """`path` upsampled twice (bicubic), cached beside it."""
     from PIL import Image
-    out = os.path.join(WORK, "up2", os.path.basename(path))
+    out = os.path.join(os.path.dirname(path), "up2_" + os.path.basename(path))
     if not os.path.exists(out):
-        os.makedirs(os.path.dirname(out), exist_ok=True)
         im = Image.open(path)
         im.resize((2 * im.width, 2 * im.height), Image.BICUBIC).save(out)
     return out
@@ -127,10 +129,10 @@ def upscaled(path):
 
 def main():
     results = {"machine": {"cpus": os.cpu_count(), "platform": platform.platform()}, "runs": []}
-    city = os.path.join(WORK, "city_grid")
+    city = os.path.join(WORK, "city_survey")
     if not os.path.exists(os.path.join(city, "scene.json")):
         shutil.rmtree(city, ignore_errors=True)
-        run([MESHNBV, "synth", "city", "--edge-length", "0.2", "--views", "32", "--size", "1024x768",
+        run([MESHNBV, "synth", "city", "--edge-length", "0.2", "--views", str(VIEWS), "--size", "%dx%d" % SIZE,
              "--layout", "grid", "--out", city, "--quiet"])
     big = os.path.join(WORK, "big.ply")
     if not os.path.exists(big):
@@ -140,10 +142,10 @@ def main():
     scene = os.path.join(WORK, "big.json")
     scene_with(os.path.join(city, "scene.json"), scene, big)
     faces = len(read_ply(big)[1])
-    results["scene"] = {"faces": faces, "views": 32, "image": "1024x768", "from": "synthetic city, edge 0.2 m, "
+    results["scene"] = {"faces": faces, "views": VIEWS, "image": "%dx%d" % SIZE, "pixels": SIZE[0] * SIZE[1], "from": "synthetic city, edge 0.2 m, "
                         "each triangle split in two along its longest edge; a survey flight of nadir photos "
                         "(synth --layout grid)"}
-    print("scene: %d faces, 32 views" % faces, flush=True)
+    print("scene: %d faces, %d views" % (faces, VIEWS), flush=True)
 
     # 1. One process against 1, 2, 4 ranks.
     one = os.path.join(WORK, "one.ply")
@@ -152,23 +154,27 @@ def main():
     peak = float(re.search(r"peak_kb (\d+)", err).group(1)) / 1024
     results["runs"].append({"what": "meshnbv pri", "ranks": 0, "seconds": wall, "peak_mb": [peak]})
     print("meshnbv: %.1f s, %.0f MB" % (wall, peak), flush=True)
-    for n in (1, 2, 4):
+    # Each rank with every core (TBB threads), then each rank with one
+    # thread: the speed-up over ranks that this 2-core machine can show.
+    for n, threads in ((1, 0), (2, 0), (4, 0), (1, 1), (2, 1)):
         path = os.path.join(WORK, "np%d.ply" % n)
         # --bind-to none: Open MPI binds each rank to one core by default
         # (np <= 2), which would leave TBB one thread.
         wall, out, err = run(["mpirun", "-q", "--oversubscribe", "--bind-to", "none", "-np", str(n), MPI, "pri",
-                              scene, "--out", path, "--overwrite", "--progress", "json"])
+                              scene, "--out", path, "--overwrite", "--progress", "json"] +
+                             (["--threads", str(threads)] if threads else []))
         ranks = re.findall(r"rank (\d+) ([\d.]+) tiles, ([\d.]+) faces, ([\d.]+) images decoded, ([\d.]+) s, "
                            r"peak (\d+) MB, (\d+) threads", err)
         if len(ranks) != n:
             sys.exit("bench/scale: no per-rank line for %d ranks in: %s" % (n, err[-2000:]))
         results["runs"].append({
-            "what": "meshnbv-mpi pri", "ranks": n, "seconds": wall, "identical": same(one, path),
+            "what": "meshnbv-mpi pri" if not threads else "meshnbv-mpi pri, 1 thread per rank",
+            "ranks": n, "seconds": wall, "identical": same(one, path),
             "tiles": [float(r[1]) for r in ranks], "faces": [float(r[2]) for r in ranks],
             "images_decoded": [float(r[3]) for r in ranks], "rank_seconds": [float(r[4]) for r in ranks],
             "peak_mb": [float(r[5]) for r in ranks], "threads": [int(r[6]) for r in ranks]})
-        print("np %d: %.1f s, peaks %s MB, images %s, identical %s" % (
-            n, wall, [r[5] for r in ranks], [r[3] for r in ranks], same(one, path)), flush=True)
+        print("np %d (%s threads): %.1f s, peaks %s MB, images %s, identical %s" % (
+            n, threads or "all", wall, [r[5] for r in ranks], [r[3] for r in ranks], same(one, path)), flush=True)
 
     # 2. Incremental: a local edit and an added view.
     v, f = read_ply(big)
@@ -186,7 +192,7 @@ def main():
     edited_scene = os.path.join(WORK, "edited.json")
     scene_with(os.path.join(city, "scene.json"), edited_scene, edited_ply)
     fewer = os.path.join(WORK, "fewer.json")
-    scene_with(os.path.join(city, "scene.json"), fewer, big, views=31)
+    scene_with(os.path.join(city, "scene.json"), fewer, big, views=VIEWS - 1)
     fewer_ply = os.path.join(WORK, "fewer.ply")
     run([MESHNBV, "pri", fewer, "--out", fewer_ply, "--overwrite", "--quiet"])
     for name, target, previous in (("local edit", edited_scene, one), ("one view added", scene, fewer_ply)):
@@ -206,10 +212,14 @@ def main():
             name, t_full, t_inc, m.group(1), m.group(2), same(full, inc)), flush=True)
 
     # 3. Cost-model points (one process, 2 threads): every 4th, 2nd and
-    # every view at 1024x768, every 2nd and every view at 2048x1536.
-    for stride, scale in ((4, 1), (2, 1), (1, 1), (2, 2), (1, 2)):
-        sub = os.path.join(WORK, "cost_%d_%d.json" % (stride, scale))
-        scene_with(os.path.join(city, "scene.json"), sub, big, stride=stride, scale=scale)
+    # every photo at their size, every 2nd and every photo upsampled twice.
+    # And every photo on the city's own mesh (half the faces: the split
+    # undone), for the part of the time that grows with the faces alone.
+    base = os.path.join(city, "degraded.ply")
+    for stride, scale, mesh in ((4, 1, big), (2, 1, big), (1, 1, big), (2, 2, big), (1, 2, big), (1, 1, base)):
+        sub = os.path.join(WORK, "cost_%d_%d_%s.json" % (stride, scale, os.path.basename(mesh)))
+        scene_with(os.path.join(city, "scene.json"), sub, mesh, stride=stride, scale=scale)
+        faces = len(read_ply(mesh)[1])
         views = len(json.load(open(sub))["views"])
         summary = os.path.join(WORK, "cost_summary.json")
         ply = os.path.join(WORK, "views.ply")
@@ -218,9 +228,9 @@ def main():
         s = json.load(open(summary))
         per_face = read_ply(ply, fields=True)
         seen = per_face["pri_views"] >= 2
-        pixels = 1024 * 768 * scale * scale
+        pixels = SIZE[0] * SIZE[1] * scale * scale
         results["runs"].append({"what": "cost point", "views": views, "faces": faces, "seconds": t,
-                                "image": "%dx%d" % (1024 * scale, 768 * scale), "pixels": pixels,
+                                "image": "%dx%d" % (SIZE[0] * scale, SIZE[1] * scale), "pixels": pixels,
                                 "peak_mb": float(re.search(r"peak_kb (\d+)", err).group(1)) / 1024,
                                 "observed": s["faces"]["observed"], "pri_seconds": s["seconds"],
                                 "images_decoded": s["images_decoded"],
@@ -228,7 +238,23 @@ def main():
                                 "samples": float((per_face["pri_views"] * per_face["pri_samples"]).sum()),
                                 "mean_views": float(per_face["pri_views"].mean()),
                                 "mean_samples": float(per_face["pri_samples"][seen].mean())})
-        print("cost point: %d views of %dx%d, %.1f s" % (views, 1024 * scale, 768 * scale, t), flush=True)
+        print("cost point: %d faces, %d views of %dx%d, %.1f s" % (faces, views, SIZE[0] * scale, SIZE[1] * scale, t),
+              flush=True)
+    # Decoding alone, on one thread: the photos at both sizes read with
+    # PIL (Debian's libpng, the library OpenCV decodes PNG with).
+    from PIL import Image
+    for scale in (1, 2):
+        paths = [v["image"] for v in json.load(open(os.path.join(WORK, "cost_1_%d_big.ply.json" % scale)))["views"]][:32]
+        t = time.perf_counter()
+        for path in paths:
+            Image.open(path).load()
+        seconds = time.perf_counter() - t
+        pixels = len(paths) * SIZE[0] * SIZE[1] * scale * scale
+        results["runs"].append({"what": "decode", "image": "%dx%d" % (SIZE[0] * scale, SIZE[1] * scale),
+                                "photos": len(paths), "seconds": seconds, "pixels": pixels,
+                                "seconds_per_megapixel": seconds / pixels * 1e6})
+        print("decode: %d photos of %dx%d, %.2f s" % (len(paths), SIZE[0] * scale, SIZE[1] * scale, seconds),
+              flush=True)
     json.dump(results, open(os.path.join(OUT, "runs.json"), "w"), indent=1)
     table(results)
     subprocess.run(["/usr/bin/python3", os.path.join(os.path.dirname(os.path.abspath(__file__)), "model.py")],
@@ -239,7 +265,7 @@ def table(results):
     rows = ["| run | ranks | wall s | peak MB per rank | images decoded per rank | faces per rank | identical |",
             "|---|---|---|---|---|---|---|"]
     for r in results["runs"]:
-        if r["what"] in ("meshnbv pri", "meshnbv-mpi pri"):
+        if r["what"].startswith("meshnbv"):
             rows.append("| %s | %s | %.1f | %s | %s | %s | %s |" % (
                 r["what"], r["ranks"] or "-", r["seconds"], ", ".join("%.0f" % x for x in r["peak_mb"]),
                 ", ".join("%.0f" % x for x in r.get("images_decoded", [])) or "-",

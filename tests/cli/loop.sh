@@ -65,6 +65,19 @@ for a, b in zip(comp, comp[1:]):
 assert comp[0] > 0.05, comp
 PY
 done
+# Without incremental PRI: the same views chosen, every face computed at
+# every step (and with it, no step computed more faces than it has).
+"$MESHNBV" loop "$TMP/synth" --strategy nbv --view-budget 5 --out "$TMP/nbv_full" --cache "$TMP/cache" \
+  --no-incremental-pri --quiet >/dev/null 2>&1 || fail "loop --no-incremental-pri"
+/usr/bin/python3 - "$TMP/nbv" "$TMP/nbv_full" <<'PY' || fail "loop incremental PRI against full"
+import json, sys
+inc, full = (json.load(open(d + "/loop.json")) for d in sys.argv[1:3])
+assert inc["options"]["incremental_pri"] is True and full["options"]["incremental_pri"] is False
+assert [s["views"] for s in inc["steps"]] == [s["views"] for s in full["steps"]]
+for a, b in zip(inc["steps"][1:], full["steps"][1:]):
+    assert b["pri_faces"]["recomputed"] == b["pri_faces"]["total"] > 0, b["pri_faces"]
+    assert 0 <= a["pri_faces"]["recomputed"] <= a["pri_faces"]["total"], a["pri_faces"]
+PY
 # The cache is shared: features and matches were computed once.
 [ "$(grep -c '^\$ .*feature_extractor' "$TMP/cache/colmap/colmap.log")" -eq 1 ] || fail "features computed once"
 expect_error "--overwrite" "$MESHNBV" loop "$TMP/synth" --strategy uniform --view-budget 5 --out "$TMP/uniform" --cache "$TMP/cache"

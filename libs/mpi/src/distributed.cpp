@@ -123,7 +123,8 @@ struct RankStats {
 // rank has been told "none left" or has failed. The tiles (in Morton order)
 // are cut into one run per rank, so that a rank's tiles lie together and
 // need few of the photos; a rank whose run is done takes the last tile of
-// the longest run left (dynamic balance, locality kept).
+// the run before its own (beside its first tiles), else of the longest run
+// left (dynamic balance, locality kept).
 class Dispatcher {
  public:
   Dispatcher(std::size_t tiles, int ranks) : ranks_(ranks), busy_(std::size_t(ranks), 0) {
@@ -148,6 +149,10 @@ class Dispatcher {
     std::lock_guard<std::mutex> lock(mutex_);
     auto& own = runs_[std::size_t(rank)];
     if (own.first < own.second) return std::int64_t(own.first++);
+    // The run before this rank's ends where this rank's began: its last
+    // tile lies beside the tiles this rank did first.
+    auto& before = runs_[std::size_t((rank + ranks_ - 1) % ranks_)];
+    if (before.first < before.second) return std::int64_t(--before.second);
     auto longest = std::max_element(runs_.begin(), runs_.end(), [](const auto& a, const auto& b) {
       return a.second - a.first < b.second - b.first;
     });
