@@ -347,3 +347,18 @@ TEST(PriIncremental, AddedViewSelectsViewsOnlyForTheFacesInItsImage) {
   EXPECT_LE(plan.selected, inside);
   EXPECT_LT(plan.selected, all.mesh.num_faces() / 4);
 }
+
+// The same faces in another order (an exporter that sorts them): each is
+// found by its geometry, nothing is recomputed, and the result equals a
+// full computation on the reordered mesh.
+TEST(PriIncremental, ReorderedFacesAreFoundByTheirGeometry) {
+  const Scene before = building(5);
+  const PriOptions o;
+  const PriPrevious previous{before.mesh, compute_pri(before, o)};
+  Scene after = before;
+  std::reverse(after.mesh.faces.begin(), after.mesh.faces.end());
+  const PriResult incremental = compute_pri(after, o, {}, &previous);
+  EXPECT_EQ(incremental.recomputed, 0u);
+  EXPECT_EQ(plan_incremental_pri(after, o, previous).selected, 0u);
+  expect_identical(compute_pri(after, o), incremental);
+}
