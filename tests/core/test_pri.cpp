@@ -260,6 +260,17 @@ TEST(Pri, EmptyMeshAndNoImagesAreErrors) {
   Scene missing = s.scene;
   missing.views[2].image_path += ".gone";
   MESHNBV_EXPECT_ERROR_CONTAINS(compute_pri(missing), "image file not found");
+  // Photos are decoded ahead of their turn, several at once: with two
+  // missing, the error is still the first one's in view order, whatever
+  // the thread count.
+  Scene two_missing = s.scene;
+  two_missing.views[1].image_path += ".first";
+  two_missing.views[2].image_path += ".second";
+  for (int threads : {1, 2, 4}) {
+    PriOptions o;
+    o.threads = threads;
+    MESHNBV_EXPECT_ERROR_CONTAINS(compute_pri(two_missing, o), ".first");
+  }
   PriOptions bad;
   bad.max_views_per_face = 1;
   MESHNBV_EXPECT_ERROR_CONTAINS(compute_pri(s.scene, bad), "max_views_per_face");

@@ -7,6 +7,8 @@
 #include <memory>
 #include <array>
 #include <cstring>
+#include <deque>
+#include <exception>
 #include <filesystem>
 #include <numeric>
 #include <unordered_map>
@@ -14,6 +16,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
+#include <tbb/task_group.h>
 
 #include "meshnbv/options.h"
 #include "meshnbv/error.h"
@@ -125,7 +128,7 @@ PriFaceViews select_views(const TriangleMesh& mesh, const std::vector<Vec3>& nor
     const std::size_t i = usable ? std::size_t((*usable)[k]) : k;
     if (!face_visible(mesh, normals, vis, f, k, centres[i])) continue;
     Vec2 p[3];
-    for (int k = 0; k < 3; ++k) cams[i].project(mesh.vertices[face[k]], &p[k]);
+    for (int c = 0; c < 3; ++c) cams[i].project(mesh.vertices[face[c]], &p[c]);
     const double cosine = normals[f].dot((centres[i] - centroid).normalized());
     if (cosine < min_cosine) continue;  // grazing view
     if (o.check_interior_occlusion && !interior_unoccluded(mesh, caster, f, centres[i], o, abs_eps))
@@ -622,14 +625,69 @@ inline void sample_face(const TriangleMesh& mesh, std::size_t f, const PriFaceVi
   if (!ok) slot[0] = std::numeric_limits<float>::quiet_NaN();  // view unusable here
 }
 
-// Camera i samples every face of the block that it sees.
-void sample_view(const PriInputs& in, const SampleBlock& block, std::size_t i) {
+// One view's photo made ready for sampling, by a task of its own: decoded
+// (through the scene's image cache) and converted to the sampling plane.
+struct PreparedView {
+  std::size_t view = 0;
+  FloatImage plane;
+  std::exception_ptr error;  // the decoding's, thrown when the view's turn comes
+  tbb::task_group work;
+};
+
+void prepare_view(const PriInputs& in, PreparedView* p) {
+  try {
+    const auto image = in.scene.image(in.selection.image_views[p->view]);
+    p->plane = in.options.color ? FloatImage::rgb_of(*image) : FloatImage::luminance_of(*image);
+  } catch (...) {
+    p->error = std::current_exception();
+  }
+}
+
+// The photos of a block's views in order, each prepared ahead of its turn:
+// at most `ahead` at a time beyond the one being sampled (the memory bound),
+// decoding and conversion in parallel with the sampling of earlier views.
+class ViewQueue {
+ public:
+  ViewQueue(const PriInputs& in, const SampleBlock& block, std::size_t ahead) : in_(in), ahead_(ahead) {
+    for (std::size_t i = 0; i < block.by_view.size(); ++i)
+      if (!block.by_view[i].empty()) order_.push_back(i);  // the others are not even decoded
+    launch();
+  }
+  ~ViewQueue() {  // on an exception too: no task may outlive what it writes
+    for (auto& p : queue_) p->work.wait();
+  }
+  // The next view's plane (throws that view's decoding error).
+  std::unique_ptr<PreparedView> next() {
+    std::unique_ptr<PreparedView> p = std::move(queue_.front());
+    queue_.pop_front();
+    p->work.wait();
+    launch();
+    if (p->error) std::rethrow_exception(p->error);
+    return p;
+  }
+
+ private:
+  void launch() {
+    while (launched_ < order_.size() && queue_.size() < ahead_) {
+      auto p = std::make_unique<PreparedView>();
+      p->view = order_[launched_++];
+      PreparedView* raw = p.get();
+      const PriInputs* in = &in_;
+      raw->work.run([in, raw] { prepare_view(*in, raw); });
+      queue_.push_back(std::move(p));
+    }
+  }
+  const PriInputs& in_;
+  const std::size_t ahead_;
+  std::vector<std::size_t> order_;
+  std::size_t launched_ = 0;
+  std::deque<std::unique_ptr<PreparedView>> queue_;
+};
+
+// Camera i samples every face of the block that it sees, on `plane`.
+void sample_view(const PriInputs& in, const SampleBlock& block, std::size_t i, const FloatImage& plane) {
   const std::vector<std::pair<std::size_t, int>>& faces = block.by_view[i];
-  if (faces.empty()) return;  // its image is not even decoded
   const std::vector<PriFaceViews>& fv = in.selection.faces;
-  const auto image = in.scene.image(in.selection.image_views[i]);
-  const FloatImage plane =
-      in.options.color ? FloatImage::rgb_of(*image) : FloatImage::luminance_of(*image);
   const PinholeCamera& cam = in.selection.cameras[i];
   const ViewSampler view{plane, cam, in.channels, !cam.has_distortion(), cam.K() * cam.R, cam.K() * cam.t};
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, faces.size()), [&](const auto& r) {
@@ -927,10 +985,16 @@ PriPart compute_pri_part(const Scene& scene, const PriOptions& options, const Pr
   const std::size_t loads_before = scene.images ? scene.images->loads() : 0;
   tbb::task_arena arena(thread_count(options));
   arena.execute([&] {
+    // Photos prepared ahead: as many as threads, at most 4.
+    const std::size_t ahead = std::size_t(std::clamp(thread_count(options), 1, 4));
     for (std::size_t begin = 0; begin < n;) {
       const SampleBlock block = plan_block(in, begin);
+      ViewQueue queue(in, block, ahead);
       for (std::size_t i = 0; i < views; ++i) {
-        sample_view(in, block, i);
+        if (!block.by_view[i].empty()) {
+          const std::unique_ptr<PreparedView> view = queue.next();
+          sample_view(in, block, i, view->plane);
+        }
         const double done = (double(block.begin) + double(block.end - block.begin) * double(i + 1) / double(views)) / double(n);
         report_progress(progress, 0.95 * done, "pri");
       }
