@@ -42,11 +42,19 @@ export LSAN_OPTIONS=suppressions=$SUPPRESSIONS:print_suppressions=0
 
 cmake -S . -B "$BUILD" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" -DMESHNBV_SANITIZE=ON \
-  -DMESHNBV_BUILD_TESTS=ON -DMESHNBV_BUILD_BENCH=OFF -DMESHNBV_BUILD_VTK=OFF -DMESHNBV_BUILD_MESHLAB=OFF
+  -DMESHNBV_BUILD_TESTS=ON -DMESHNBV_BUILD_BENCH=OFF -DMESHNBV_BUILD_VTK=OFF -DMESHNBV_BUILD_MESHLAB=OFF \
+  -DMESHNBV_BUILD_MPI=ON
 cmake --build "$BUILD" -j"$JOBS"
 
 # The find_package consumer test builds a program against the sanitized
 # library: it needs the same flags (CMake takes them from the environment).
 export CXXFLAGS="-fsanitize=address,undefined"
 export LDFLAGS="-fsanitize=address,undefined"
-ctest --test-dir "$BUILD" --output-on-failure -j"$JOBS" --timeout 1500 ${EXCLUDE:+-E "$EXCLUDE"}
+# cli/mpi runs apart, with leak detection off: Open MPI's runtime keeps its
+# allocations at exit by design, in plugins it has unloaded by then (no
+# library name to suppress them by). Memory errors and undefined behaviour
+# are still caught in every rank.
+ctest --test-dir "$BUILD" --output-on-failure -j"$JOBS" --timeout 1500 -E "${EXCLUDE:+$EXCLUDE|}^cli/mpi\$"
+ASAN_OPTIONS=${ASAN_OPTIONS/detect_leaks=1/detect_leaks=0} \
+  ctest --test-dir "$BUILD" --output-on-failure --timeout 1500 -R '^cli/mpi$'
+
