@@ -15,6 +15,22 @@
 using namespace meshnbv;
 namespace fs = std::filesystem;
 
+namespace {
+
+// Of 192 rays through a 16 x 12 grid of the image, those that meet the scene.
+int scene_hits(const RayCaster& caster, const PinholeCamera& cam) {
+  int hits = 0;
+  for (int gy = 0; gy < 12; ++gy)
+    for (int gx = 0; gx < 16; ++gx) {
+      const Ray ray = cam.viewing_ray({(gx + 0.5) * cam.width / 16.0, (gy + 0.5) * cam.height / 12.0});
+      RayHit hit;
+      hits += caster.intersect(ray.origin, ray.direction, &hit) ? 1 : 0;
+    }
+  return hits;
+}
+
+}  // namespace
+
 TEST(Generators, ClosedOrBoundedAndSeenByEveryCamera) {
   for (const std::string name : {"building", "fortress", "city"}) {
     const TriangleMesh mesh = synth::make_scene_mesh(name);
@@ -45,13 +61,7 @@ TEST(Generators, ClosedOrBoundedAndSeenByEveryCamera) {
           EXPECT_TRUE(cam.in_image(px)) << name << " corner at " << px.transpose();
         }
         // The scene is in the picture, not a speck (rays on a 16 x 12 grid).
-        int hits = 0;
-        for (int gy = 0; gy < 12; ++gy)
-          for (int gx = 0; gx < 16; ++gx) {
-            const Ray ray = cam.viewing_ray({(gx + 0.5) * cam.width / 16.0, (gy + 0.5) * cam.height / 12.0});
-            RayHit hit;
-            hits += caster.intersect(ray.origin, ray.direction, &hit) ? 1 : 0;
-          }
+        const int hits = scene_hits(caster, cam);
         EXPECT_GT(hits, 192 / 10) << name << ": the scene covers under 10% of the image";
         EXPECT_GT(cam.center().z(), 0.0);
       }
@@ -77,13 +87,7 @@ TEST(Generators, GridLayoutSurveysTheSceneInOverlappingParts) {
     for (const auto& cam : cams) {
       ASSERT_NO_THROW(cam.check());
       EXPECT_GT(cam.center().z(), box.max.z());
-      int hits = 0;
-      for (int gy = 0; gy < 12; ++gy)
-        for (int gx = 0; gx < 16; ++gx) {
-          const Ray ray = cam.viewing_ray({(gx + 0.5) * cam.width / 16.0, (gy + 0.5) * cam.height / 12.0});
-          RayHit hit;
-          hits += caster.intersect(ray.origin, ray.direction, &hit) ? 1 : 0;
-        }
+      const int hits = scene_hits(caster, cam);
       EXPECT_GT(hits, 192 / 8) << "the scene should be in a survey photo (a corner photo: a quarter)";
     }
     if (count >= 16) {
@@ -112,8 +116,9 @@ TEST(Generators, GridLayoutSurveysTheSceneInOverlappingParts) {
         }
         EXPECT_GE(seen, 2) << p.transpose();
       }
-    if (count >= 30)
+    if (count >= 30) {
       for (int n : seen_by) EXPECT_LT(n, 400 / 2) << "a survey photo sees a part of the floor";
+    }
   }
   EXPECT_EQ(synth::parse_camera_layout("grid"), synth::CameraLayout::Grid);
   EXPECT_EQ(synth::camera_layout_name(synth::CameraLayout::Grid), "grid");

@@ -284,10 +284,10 @@ std::vector<PinholeCamera> make_cameras(const TriangleMesh& mesh, const CameraSe
   const double radius = 0.5 * box.diagonal();
   const double hfov = o.horizontal_fov_degrees * M_PI / 180.0;
   const double fx = 0.5 * o.width / std::tan(hfov / 2);
+  if (o.layout == CameraLayout::Grid) return grid_cameras(box, o, fx);
   const double vfov = 2 * std::atan(0.5 * o.height / fx);
   const double narrow = std::min(hfov, vfov);
   const double distance = radius / std::sin(std::clamp(o.fill, 0.05, 1.0) * narrow / 2);  // always fits
-  if (o.layout == CameraLayout::Grid) return grid_cameras(box, o, fx);
 
   // (azimuth, elevation) pairs for the layout.
   std::vector<std::pair<double, double>> dirs;
