@@ -32,7 +32,35 @@ PACKAGES=(
   # build against, dpkg-dev for `apt-get source` of MeshLab's headers
   meshlab qtbase5-dev libqt5opengl5-dev libqt5xmlpatterns5-dev qtscript5-dev
   libglew-dev libgl-dev libglu1-mesa-dev dpkg-dev
+  # ParaView 5.11 plugin (plugins/paraview/): ParaView and its CMake package;
+  # its Python (pvpython) is unpacked apart below
+  paraview paraview-dev
 )
+
+# pvpython: Debian 12's python3-paraview conflicts with python3-vtk9 (both
+# install the Python package vtkmodules) and so would remove the VTK 9.1
+# that filters/ builds against. Its files are unpacked instead into a folder
+# of their own (no dpkg database entry); the ParaView tests put that folder
+# first on pvpython's path (plugins/paraview/tools/pvpython).
+PVPYTHON_ROOT=/opt/meshnbv/python3-paraview
+unpack_pvpython() {
+  local version
+  version=$(dpkg-query -W -f='${Version}' paraview 2>/dev/null) || return 0
+  [ -n "$version" ] || return 0
+  if [ -x "$PVPYTHON_ROOT/usr/bin/pvpython3.11" ] && [ "$(cat "$PVPYTHON_ROOT/version" 2>/dev/null)" = "$version" ]; then
+    return 0
+  fi
+  echo "install-deps: unpacking python3-paraview $version into $PVPYTHON_ROOT"
+  local tmp
+  tmp=$(mktemp -d)
+  chmod 755 "$tmp"  # apt's download user writes there
+  (cd "$tmp" && $SUDO apt-get -o DPkg::Lock::Timeout=600 download -qq "python3-paraview=$version")
+  $SUDO rm -rf "$PVPYTHON_ROOT"
+  $SUDO mkdir -p "$PVPYTHON_ROOT"
+  $SUDO dpkg -x "$tmp"/python3-paraview_*.deb "$PVPYTHON_ROOT"
+  echo "$version" | $SUDO tee "$PVPYTHON_ROOT/version" >/dev/null
+  rm -rf "$tmp"
+}
 
 missing=()
 for p in "${PACKAGES[@]}"; do
@@ -41,18 +69,20 @@ for p in "${PACKAGES[@]}"; do
   fi
 done
 
+SUDO=""
+if [ "$(id -u)" -ne 0 ] && command -v sudo >/dev/null 2>&1; then SUDO="sudo"; fi
+
 if [ ${#missing[@]} -eq 0 ]; then
   echo "install-deps: all ${#PACKAGES[@]} packages present"
+  unpack_pvpython
   exit 0
 fi
 
-SUDO=""
-if [ "$(id -u)" -ne 0 ]; then
-  if command -v sudo >/dev/null 2>&1; then SUDO="sudo"; else
-    echo "install-deps: need root or sudo to install: ${missing[*]}" >&2; exit 1
-  fi
+if [ "$(id -u)" -ne 0 ] && [ -z "$SUDO" ]; then
+  echo "install-deps: need root or sudo to install: ${missing[*]}" >&2; exit 1
 fi
 echo "install-deps: installing ${missing[*]}"
 export DEBIAN_FRONTEND=noninteractive
 $SUDO apt-get -o DPkg::Lock::Timeout=600 update -qq
 $SUDO env DEBIAN_FRONTEND=noninteractive apt-get -o DPkg::Lock::Timeout=600 install -y -qq --no-install-recommends "${missing[@]}"
+unpack_pvpython

@@ -1,5 +1,8 @@
 #include "vtkMeshNBVNextBestViewFilter.h"
 
+#include <cstdint>
+#include <limits>
+
 #include "vtkCellData.h"
 #include "vtkDataObjectTree.h"
 #include "vtkDoubleArray.h"
@@ -145,7 +148,9 @@ meshnbv::SuggestOptions RawOptionsOf(vtkMeshNBVNextBestViewFilter* f)
   o.energy.incidence_mu = f->GetIncidenceMu();
   o.energy.incidence_sigma = f->GetIncidenceSigma();
   o.sampling.directions = f->GetDirections();
-  o.sampling.seed = f->GetSeed();
+  // Negative seeds stay visible to check_options() as out of range (as the
+  // option table's setter keeps them).
+  o.sampling.seed = f->GetSeed() < 0 ? std::numeric_limits<std::uint64_t>::max() : std::uint64_t(f->GetSeed());
   o.safety_distance = f->GetSafetyDistance();
   o.refine_best = f->GetRefineBest();
   o.refine.iterations = f->GetRefineIterations();
@@ -192,7 +197,7 @@ vtkMeshNBVNextBestViewFilter::vtkMeshNBVNextBestViewFilter()
   this->SafetyDistance = defaults.safety_distance;
   this->RefineBest = defaults.refine_best;
   this->RefineIterations = defaults.refine.iterations;
-  this->Seed = defaults.sampling.seed;
+  this->Seed = vtkTypeInt64(defaults.sampling.seed);
   this->Threads = defaults.threads;
   this->SetNumberOfInputPorts(3);
   this->SetNumberOfOutputPorts(2);

@@ -166,10 +166,11 @@ public:
 
   ///@{
   /**
-   * Seed of the sampling (`seed`).
+   * Seed of the sampling (`seed`). Signed, so that ParaView's wrapping
+   * can set it and a negative value is reported as out of range.
    */
-  vtkSetMacro(Seed, vtkTypeUInt64);
-  vtkGetMacro(Seed, vtkTypeUInt64);
+  vtkSetMacro(Seed, vtkTypeInt64);
+  vtkGetMacro(Seed, vtkTypeInt64);
   ///@}
 
   ///@{
@@ -241,7 +242,7 @@ protected:
   double SafetyDistance;
   int RefineBest;
   int RefineIterations;
-  vtkTypeUInt64 Seed;
+  vtkTypeInt64 Seed;
   int Threads;
   std::string PRIArrayName;
   double FrustumDepth;

@@ -181,6 +181,9 @@ int vtkMeshNBVPRIFilter::RequestData(
     AddCellArray<vtkIntArray>(output, this->PRIPairsArrayName, result.pri_pairs);
     AddCellArray<vtkIntArray>(output, this->PRISamplesArrayName, result.pri_samples);
     AddCellArray<vtkFloatArray>(output, this->PRITextureArrayName, result.pri_texture);
+    // The active cell scalars: what a mapper (or ParaView, on Apply)
+    // colours by.
+    output->GetCellData()->SetActiveScalars(this->PRIArrayName.c_str());
   }
   catch (const meshnbv::Cancelled&)
   {

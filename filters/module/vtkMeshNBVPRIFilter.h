@@ -29,7 +29,7 @@
  * PRITexture (float, mean standard deviation of the samples, intensity in
  * [0, 1]; NaN where fewer than 2 views), named by PRIArrayName,
  * PRIViewsArrayName, PRIPairsArrayName, PRISamplesArrayName and
- * PRITextureArrayName. The same values as the PLY of `meshnbv pri`
+ * PRITextureArrayName; PRI is the active cell scalars. The same values as the PLY of `meshnbv pri`
  * (quality, pri_views, pri_pairs, pri_samples, pri_texture).
  *
  * The options carry the names and defaults of the core, the command line
