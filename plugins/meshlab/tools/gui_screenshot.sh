@@ -37,19 +37,15 @@ grep -E '^nbv_' "$WORK/server.log" | sort -u
 # mask): point the project at the mesh saved with -o -m fc fq instead.
 sed 's/"[^"]*_out\.ply"/"mesh_pri.ply"/g' "$WORK/project/out.mlp" > "$WORK/project/gui.mlp"
 
-display=$((300 + $$ % 300))
-while [ -e "/tmp/.X$display-lock" ]; do display=$((display + 1)); done
-mkdir -p "$WORK/fb"
-Xvfb ":$display" -screen 0 1280x1024x24 -fbdir "$WORK/fb" > "$WORK/xvfb.log" 2>&1 &
-pids+=($!)
-sleep 1
-DISPLAY=":$display" QT_DEBUG_PLUGINS=1 "$PREFIX/bin/meshlab" "$WORK/project/gui.mlp" > "$WORK/gui.log" 2>&1 &
+source "$REPO/tests/support/xvfb_screen.bash"
+start_xvfb_screen "$WORK" 1280x1024x24
+QT_DEBUG_PLUGINS=1 "$PREFIX/bin/meshlab" "$WORK/project/gui.mlp" > "$WORK/gui.log" 2>&1 &
 pids+=($!)
 sleep 8
 grep -o 'loaded library "[^"]*meshnbv[^"]*"' "$WORK/gui.log" || { echo "the plugin did not load:"; cat "$WORK/gui.log"; exit 1; }
 # Tilt the view (MeshLab opens looking down -z) to see roof and facades.
-DISPLAY=":$display" python3 "$HERE/xinput.py" drag 217 470 217 330
-DISPLAY=":$display" python3 "$HERE/xinput.py" move 700 780
+python3 "$HERE/xinput.py" drag 217 470 217 330
+python3 "$HERE/xinput.py" move 700 780
 sleep 1.5
 python3 "$HERE/xwd_to_png.py" "$WORK/fb/Xvfb_screen0" "$OUT" --crop 0,0,852,795
 echo "screenshot: $OUT"

@@ -27,13 +27,9 @@ MESHNBV_PARAVIEW_PLUGIN=$PLUGIN xvfb-run -a -s "-screen 0 1280x1024x24" "$HERE/p
   "$REPO/sample_projects/paraview/meshnbv_sample.py" --state "$WORK/sample.pvsm" > "$WORK/pvpython.log" 2>&1 ||
   { cat "$WORK/pvpython.log"; exit 1; }
 
-display=$((600 + $$ % 300))
-while [ -e "/tmp/.X$display-lock" ]; do display=$((display + 1)); done
-mkdir -p "$WORK/fb"
-Xvfb ":$display" -screen 0 1280x900x24 -fbdir "$WORK/fb" > "$WORK/xvfb.log" 2>&1 &
-pids+=($!)
-sleep 1
-DISPLAY=":$display" PV_PLUGIN_PATH=$(dirname "$PLUGIN") paraview --state="$WORK/sample.pvsm" \
+source "$REPO/tests/support/xvfb_screen.bash"
+start_xvfb_screen "$WORK" 1280x900x24
+PV_PLUGIN_PATH=$(dirname "$PLUGIN") paraview --state="$WORK/sample.pvsm" \
   > "$WORK/gui.log" 2>&1 &
 pids+=($!)
 # Wait for the window to show the state (the mesh's green), at most 60 s.
@@ -41,7 +37,7 @@ for _ in $(seq 60); do
   sleep 1
   if ! kill -0 "${pids[1]}" 2>/dev/null; then echo "paraview exited:"; cat "$WORK/gui.log"; exit 1; fi
   # The welcome dialog (modal, before any rendering) closes on Escape.
-  DISPLAY=":$display" /usr/bin/python3 "$REPO/plugins/meshlab/tools/xinput.py" key Escape || true
+  /usr/bin/python3 "$REPO/plugins/meshlab/tools/xinput.py" key Escape || true
   /usr/bin/python3 "$REPO/plugins/meshlab/tools/xwd_to_png.py" "$WORK/fb/Xvfb_screen0" "$WORK/now.png"
   if /usr/bin/python3 - "$WORK/now.png" <<'PY'
 import sys
