@@ -32,6 +32,7 @@ void add_run_command(CLI::App& app) {
     ProgressChoice progress;
     std::string out;
     bool overwrite = false;
+    int display_faces = int(kDefaultDisplayFaces);
   };
   auto a = std::make_shared<Args>();
   CLI::App* cmd = app.add_subcommand(
@@ -42,6 +43,10 @@ void add_run_command(CLI::App& app) {
   a->mission.add_to(cmd, &a->flags);
   cmd->add_option("--out", a->out, "Output folder")->required();
   cmd->add_flag("--overwrite", a->overwrite, "Write into a folder that already holds results");
+  cmd->add_option("--display-faces", a->display_faces,
+                  "Face budget of the report's 3-D view: a larger mesh is shown decimated to this many faces")
+      ->check(CLI::Range(100, 100000000))
+      ->capture_default_str();
   a->progress.add_to(cmd);
   cmd->callback([a]() {
     using clock = std::chrono::steady_clock;
@@ -139,9 +144,11 @@ void add_run_command(CLI::App& app) {
     if (no_mlp.empty())
       r.files.push_back({"suggestions.mlp", "MeshLab project with rasters nbv_1, nbv_2, ..."});
     r.files.push_back({"frustums.ply", "frustums of the suggestions, red = best"});
+    r.files.push_back({"viewer", "the 3-D view's script (three.js, bundled) and data, loaded by report.html"});
     if (planned)
       r.files.push_back({"mission", "drone mission of the suggestions: KML, DJI WPML KMZ, Litchi CSV, GeoJSON, CSV"});
     r.mission = &report_mission;
+    r.display_faces = std::size_t(a->display_faces);
     const ReportFiles files = write_report(r, out.string(), bar.callback());
     bar.finish();
     std::cout << scene.mesh.num_faces() << " faces: " << pri.observed << " observed, " << pri.unobserved

@@ -35,7 +35,13 @@ PACKAGES=(
   # ParaView 5.11 plugin (plugins/paraview/): ParaView and its CMake package;
   # its Python (pvpython) is unpacked apart below
   paraview paraview-dev
+  # the report's 3-D view (libs/report/web): its browser test and bench run
+  # headless chromium (tests/report/viewer_3d.sh, bench/report/run.sh)
+  chromium chromium-driver
 )
+# The report's 3-D view is bundled with npm at build time: Debian's nodejs
+# and npm, unless an npm is already on PATH (e.g. NodeSource's).
+if ! command -v npm >/dev/null 2>&1; then PACKAGES+=(nodejs npm); fi
 
 # pvpython: Debian 12's python3-paraview conflicts with python3-vtk9 (both
 # install the Python package vtkmodules) and so would remove the VTK 9.1

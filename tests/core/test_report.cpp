@@ -50,12 +50,15 @@ TEST(Report, PicturesShowTheQualityMapAndTheSuggestions) {
   const std::string dir = test::temp_dir("report");
   const ReportFiles files = write_report(in, dir);
   ASSERT_TRUE(fs::exists(files.html));
-  for (const char* f : {"overview_1.png", "overview_2.png", "histogram.png", "nbv_1.png", "nbv_2.png"})
+  for (const char* f : {"overview_1.png", "overview_2.png", "cameras.png", "histogram.png", "nbv_1.png",
+                        "nbv_2.png", "viewer/meshnbv_viewer.js", "viewer/report_data.js"})
     ASSERT_TRUE(fs::exists(fs::path(dir) / f)) << f;
   const Image overview = Image::load(dir + "/overview_1.png");
-  // The mesh fills a good part of the overview (white background).
+  // The overviews frame the mesh alone: it fills much of the picture
+  // (white background); the picture of the whole rig shows it smaller.
   const double cover = coverage(overview, Vec3(1, 1, 1));
-  EXPECT_GT(cover, 0.10) << "share of non-background pixels";
+  EXPECT_GT(cover, 0.25) << "share of non-background pixels";
+  EXPECT_LT(coverage(Image::load(dir + "/cameras.png"), Vec3(1, 1, 1)), cover);
   // Mostly green (good faces) with red where the worst faces are.
   EXPECT_GT(count_pixels(overview, is_green), 2000u);
   EXPECT_GT(count_pixels(overview, is_red), 50u);
@@ -66,6 +69,17 @@ TEST(Report, PicturesShowTheQualityMapAndTheSuggestions) {
   EXPECT_NE(html.find("data:image/png;base64,iVBORw0KGgo"), std::string::npos);
   EXPECT_NE(html.find("<td class=l>nbv_2</td>"), std::string::npos);
   EXPECT_NE(html.find("Inputs, options and timings"), std::string::npos);
+  // The 3-D view: its container and its two classic scripts, the data first.
+  const std::size_t data_at = html.find("<script src=\"viewer/report_data.js\"></script>");
+  ASSERT_NE(data_at, std::string::npos);
+  EXPECT_GT(html.find("<script src=\"viewer/meshnbv_viewer.js\"></script>"), data_at);
+  EXPECT_NE(html.find("<div id=\"meshnbv-viewer\">"), std::string::npos);
+  EXPECT_NE(html.find("Display mesh: the " + std::to_string(p.scene.mesh.num_faces()) + " faces"), std::string::npos);
+  const std::string data = io::read_file(dir + "/viewer/report_data.js");
+  EXPECT_EQ(data.find("// MeshNBV report data"), 0u);
+  EXPECT_NE(data.find("window.MESHNBV_REPORT = {"), std::string::npos);
+  EXPECT_NE(data.find("\"format\":\"meshnbv-report-view\""), std::string::npos);
+  EXPECT_GT(fs::file_size(dir + "/viewer/meshnbv_viewer.js"), 100000u) << "the bundled three.js";
   // The report names the measure and its unit, and what PRI rests on.
   EXPECT_NE(html.find("PRI measure <b>ssd</b>, in squared intensity."), std::string::npos);
   const PriEvidence e = pri_evidence(pri);

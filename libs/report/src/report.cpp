@@ -11,37 +11,18 @@
 #include "meshnbv/raycaster.h"
 #include "meshnbv/renderer.h"
 #include "meshnbv/visualize.h"
+#include "base64.h"
+#include "viewer_data.h"
 
 namespace fs = std::filesystem;
 
 namespace meshnbv {
 namespace {
 
+using report_detail::base64;
+
 const Rgb8 kExisting{40, 90, 230};
 const Rgb8 kHighlight{255, 0, 255};
-
-std::string base64(const std::string& bytes) {
-  static const char* chars = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-  std::string out;
-  out.reserve((bytes.size() + 2) / 3 * 4);
-  std::size_t i = 0;
-  for (; i + 2 < bytes.size(); i += 3) {
-    const unsigned v = (unsigned char)bytes[i] << 16 | (unsigned char)bytes[i + 1] << 8 | (unsigned char)bytes[i + 2];
-    out += chars[v >> 18 & 63];
-    out += chars[v >> 12 & 63];
-    out += chars[v >> 6 & 63];
-    out += chars[v & 63];
-  }
-  if (i < bytes.size()) {
-    unsigned v = (unsigned char)bytes[i] << 16;
-    if (i + 1 < bytes.size()) v |= (unsigned char)bytes[i + 1] << 8;
-    out += chars[v >> 18 & 63];
-    out += chars[v >> 12 & 63];
-    out += i + 1 < bytes.size() ? chars[v >> 6 & 63] : '=';
-    out += '=';
-  }
-  return out;
-}
 
 std::string html_escape(const std::string& s) {
   std::string out;
@@ -102,21 +83,23 @@ void save_picture(const Image& img, const std::string& folder, const std::string
 }
 
 // What the overviews draw over the mesh (existing cameras in blue,
-// suggestions red..yellow) and the points they frame.
+// suggestions red..yellow), the points that frame the mesh alone, and those
+// that frame the whole rig.
 struct OverviewContent {
   std::vector<FrustumOverlay> overlays;
-  std::vector<Vec3> frame_points;
+  std::vector<Vec3> mesh_points;  // the mesh's bounding box: overview_1/2 (the mesh fills them)
+  std::vector<Vec3> rig_points;   // ... and every camera centre: cameras.png
 };
 
 OverviewContent overview_content(const Scene& scene, const SuggestResult& sug) {
   OverviewContent oc;
   const double diag = scene.mesh.bounding_box().diagonal();
-  for (const Vec3& c : scene.mesh.bounding_box().corners()) oc.frame_points.push_back(c);
+  for (const Vec3& c : scene.mesh.bounding_box().corners()) oc.mesh_points.push_back(c);
+  oc.rig_points = oc.mesh_points;
   for (const auto& v : scene.views) {
     if (!v.has_image() || !v.used) continue;
-    // Existing cameras are drawn but do not set the framing: a ring of
-    // distant cameras would shrink the mesh to a few pixels.
     oc.overlays.push_back({v.camera, kExisting, 0.06 * diag * v.camera.fx / v.camera.width, 1, ""});
+    oc.rig_points.push_back(v.camera.center());
   }
   const std::size_t n_sug = sug.suggestions.size();
   for (std::size_t i = 0; i < n_sug; ++i) {
@@ -124,7 +107,7 @@ OverviewContent overview_content(const Scene& scene, const SuggestResult& sug) {
     const double t = n_sug > 1 ? double(i) / double(n_sug - 1) : 0.0;
     const double depth = 0.2 * std::max(1e-9, s.camera.depth(s.look_at));
     oc.overlays.push_back({s.camera, Rgb8{255, std::uint8_t(std::lround(200 * t)), 0}, depth, 3, s.label});
-    oc.frame_points.push_back(s.camera.center());
+    oc.rig_points.push_back(s.camera.center());
   }
   return oc;
 }
@@ -179,9 +162,11 @@ void write_pri_section(std::ostream& h, const std::string& folder, const PriSumm
   h << "<h2>Where the mesh is poorly reconstructed</h2>\n<p>PRI measure <b>" << measure_name(measure)
     << "</b>, in " << html_escape(measure_unit(measure)) << ". Faces coloured by PRI from green (best, "
     << general(range.first) << ") to red (worst, " << general(range.second) << "; 5th and 95th percentiles), grey where no two views "
-    << "see a face. Blue: the existing cameras. Red to yellow: the suggested next views, best first.</p>\n<div class=\"row\">\n";
+    << "see a face. Blue: the existing cameras. Red to yellow: the suggested next views, best first. The "
+    << "overviews frame the mesh (frustums where they fall); the last picture shows the whole rig.</p>\n<div class=\"row\">\n";
   write_picture(h, folder, "overview_1.png", "Overview from one side");
   write_picture(h, folder, "overview_2.png", "Overview from the other side");
+  write_picture(h, folder, "cameras.png", "The mesh among every camera");
   h << "</div>\n<table><tr><th class=l>faces</th><th>observed</th><th>unobserved</th><th>textureless</th></tr><tr><td class=l>"
     << summary.faces << "</td><td>" << summary.observed << "</td><td>" << summary.unobserved << "</td><td>"
     << summary.textureless << "</td></tr></table>\n<table><tr>";
@@ -191,6 +176,23 @@ void write_pri_section(std::ostream& h, const std::string& folder, const PriSumm
   h << "</tr></table>\n";
   write_evidence(h, evidence);
   write_picture(h, folder, "histogram.png", "PRI histogram");
+}
+
+// The interactive view: the viewer builds itself in #meshnbv-viewer from
+// viewer/report_data.js (write_viewer).
+void write_viewer_section(std::ostream& h, const report_detail::ViewerFiles& v) {
+  h << "<h2>3-D view</h2>\n<p>Drag to turn, scroll to zoom, right-drag to pan. Click a suggestion (in the list or "
+       "its label) to look through it with its pose and field of view, a region to frame it, a face to read its "
+       "values. ";
+  if (v.decimated)
+    h << "Display mesh decimated from " << v.original_faces << " to " << v.display_faces
+      << " faces (each display face shows the area-weighted mean PRI of the faces it stands for; a click reports "
+         "the original face nearest the point).";
+  else
+    h << "Display mesh: the " << v.original_faces << " faces of the mesh.";
+  h << "</p>\n<div id=\"meshnbv-viewer\"><noscript>The 3-D view needs JavaScript.</noscript></div>\n"
+    << "<script src=\"" << v.folder << "/report_data.js\"></script>\n<script src=\"" << v.folder
+    << "/meshnbv_viewer.js\"></script>\n";
 }
 
 void write_suggestions_section(std::ostream& h, const std::string& folder, const SuggestResult& sug,
@@ -288,18 +290,28 @@ ReportFiles write_report(const ReportInputs& in, const std::string& folder,
   const auto [lo, hi] = colour_range(summary);
   ReportFiles out;
 
-  // Overviews: the mesh by PRI and the cameras.
+  // Overviews: the mesh by PRI framed on the mesh, then on the whole rig.
   const OverviewContent oc = overview_content(scene, sug);
   const RenderInputs coloured_inputs{&coloured, &caster, nullptr, nullptr, &coloured.face_colors};
-  const double azimuths[2] = {35.0, 215.0};
-  for (int k = 0; k < 2; ++k) {
-    const PinholeCamera viewer = overview_camera(oc.frame_points, azimuths[k], 35.0, in.image_width, in.image_height);
+  struct Overview {
+    std::string name;
+    const std::vector<Vec3>* frame;
+    double azimuth;
+  };
+  const Overview overviews[3] = {{"overview_1.png", &oc.mesh_points, 35.0},
+                                 {"overview_2.png", &oc.mesh_points, 215.0},
+                                 {"cameras.png", &oc.rig_points, 35.0}};
+  for (int k = 0; k < 3; ++k) {
+    const Overview& o = overviews[k];
+    const PinholeCamera viewer = overview_camera(*o.frame, o.azimuth, 35.0, in.image_width, in.image_height);
     Image img = render(coloured_inputs, viewer, ro);
     draw_frustums(img, viewer, oc.overlays);
     draw_color_scale(img, lo, hi, "PRI (" + measure_name(in.pri_options.measure) + ")");
-    save_picture(img, folder, "overview_" + std::to_string(k + 1) + ".png", &out);
-    report_progress(progress, 0.2 * (k + 1), "report");
+    save_picture(img, folder, o.name, &out);
+    report_progress(progress, 0.1 * (k + 1), "report");
   }
+  const report_detail::ViewerFiles viewer = report_detail::write_viewer(in, folder, {lo, hi});
+  report_progress(progress, 0.4, "report");
 
   // The top suggestions as their cameras would see the mesh, worst faces in magenta.
   const int n_views = std::min<int>(in.suggestion_views, int(sug.suggestions.size()));
@@ -317,6 +329,7 @@ ReportFiles write_report(const ReportInputs& in, const std::string& folder,
   // The page.
   std::ostringstream h;
   write_head(h, in);
+  write_viewer_section(h, viewer);
   write_pri_section(h, folder, summary, {lo, hi}, in.pri_options.measure, pri_evidence(*in.pri));
   write_suggestions_section(h, folder, sug, n_views);
   if (in.mission) write_mission_section(h, *in.mission);

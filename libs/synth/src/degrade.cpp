@@ -24,19 +24,7 @@
 
 #include "meshnbv/error.h"
 #include "meshnbv/surface_distance.h"
-
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wall"
-#pragma GCC diagnostic ignored "-Wextra"
-#pragma GCC diagnostic ignored "-Wshadow"
-#pragma GCC diagnostic ignored "-Wpedantic"
-#pragma GCC diagnostic ignored "-Wunused-parameter"
-#pragma GCC diagnostic ignored "-Wdeprecated-copy"
-#include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
-#include <OpenMesh/Tools/Decimater/DecimaterT.hh>
-#include <OpenMesh/Tools/Decimater/ModNormalFlippingT.hh>
-#include <OpenMesh/Tools/Decimater/ModQuadricT.hh>
-#pragma GCC diagnostic pop
+#include "meshnbv/synth/openmesh.h"
 
 namespace meshnbv::synth {
 
@@ -365,14 +353,11 @@ TriangleMesh cut_hole(const TriangleMesh& mesh, const Vec3& center, double radiu
   return keep_faces(mesh, keep);
 }
 
-struct OmTraits : public OpenMesh::DefaultTraits {
-  using Point = OpenMesh::Vec3d;
-  using Normal = OpenMesh::Vec3d;
-};
-using OmMesh = OpenMesh::TriMesh_ArrayKernelT<OmTraits>;
+}  // namespace
 
+namespace {
 // OpenMesh reports rejected faces on its global error stream; the rejects
-// are expected here (we count them), so the stream is muted meanwhile.
+// are expected (to_openmesh hands them back), so the stream is muted meanwhile.
 class MuteOpenMeshErrors {
  public:
   MuteOpenMeshErrors() : was_enabled_(::omerr().is_enabled()) {
@@ -387,14 +372,42 @@ class MuteOpenMeshErrors {
  private:
   bool was_enabled_;
 };
+}  // namespace
+
+std::vector<int> to_openmesh(const TriangleMesh& mesh, OmMesh& om, std::vector<std::size_t>& rejected) {
+  rejected.clear();
+  om.request_vertex_status();
+  om.request_edge_status();
+  om.request_face_status();
+  om.request_face_normals();
+  std::vector<OmMesh::VertexHandle> handles;
+  handles.reserve(mesh.vertices.size());
+  for (const Vec3& p : mesh.vertices) handles.push_back(om.add_vertex(OmMesh::Point(p.x(), p.y(), p.z())));
+  std::vector<int> om_face(mesh.faces.size(), -1);
+  {
+    MuteOpenMeshErrors mute;
+    for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+      const Face& face = mesh.faces[f];
+      OmMesh::FaceHandle fh;
+      if (face[0] != face[1] && face[1] != face[2] && face[0] != face[2])
+        fh = om.add_face(handles[std::size_t(face[0])], handles[std::size_t(face[1])], handles[std::size_t(face[2])]);
+      if (fh.is_valid()) om_face[f] = fh.idx();
+      else rejected.push_back(f);
+    }
+  }
+  for (std::size_t f : rejected)
+    for (int i : mesh.faces[f]) om.status(handles[std::size_t(i)]).set_locked(true);
+  om.update_face_normals();
+  return om_face;
+}
+
+namespace {
 
 // Quadric edge-collapse decimation (OpenMesh) to (1 - strength) of the faces.
 //
-// OpenMesh holds only manifold, consistently oriented surfaces: a face it
-// rejects (add_face returns an invalid handle: an edge with a third face, a
-// flipped neighbour, a repeated index, a complex vertex) is counted in
-// `rejected`, its vertices are locked so the decimation never moves or
-// removes them, and it is returned unchanged alongside the decimated rest.
+// A face OpenMesh rejects (to_openmesh) is counted in `rejected`, keeps its
+// vertices where they are, and is returned unchanged alongside the
+// decimated rest.
 // Separate components (e.g. a union of closed boxes) are fine.
 //
 // Per-face attributes and colours are dropped (none is kept): the faces are
@@ -408,29 +421,9 @@ TriangleMesh decimate(const TriangleMesh& mesh, double strength, std::size_t& re
       std::llround((1.0 - strength) * static_cast<double>(mesh.faces.size())));
 
   OmMesh om;
-  om.request_vertex_status();
-  om.request_edge_status();
-  om.request_face_status();
-  om.request_face_normals();
-  std::vector<OmMesh::VertexHandle> handles;
-  handles.reserve(mesh.vertices.size());
-  for (const Vec3& p : mesh.vertices)
-    handles.push_back(om.add_vertex(OmMesh::Point(p.x(), p.y(), p.z())));
   std::vector<std::size_t> rejected_faces;
-  {
-    MuteOpenMeshErrors mute;
-    for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
-      const Face& face = mesh.faces[f];
-      OmMesh::FaceHandle fh;
-      if (face[0] != face[1] && face[1] != face[2] && face[0] != face[2])
-        fh = om.add_face(handles[face[0]], handles[face[1]], handles[face[2]]);
-      if (!fh.is_valid()) rejected_faces.push_back(f);
-    }
-  }
+  to_openmesh(mesh, om, rejected_faces);
   rejected = rejected_faces.size();
-  for (std::size_t f : rejected_faces)
-    for (int i : mesh.faces[f]) om.status(handles[i]).set_locked(true);
-  om.update_face_normals();
 
   const std::size_t accepted = om.n_faces();
   const std::size_t target = target_total > rejected ? target_total - rejected : 0;
@@ -452,7 +445,7 @@ TriangleMesh decimate(const TriangleMesh& mesh, double strength, std::size_t& re
   auto index_of = [&](int v) {
     if (remap[v] < 0) {
       remap[v] = static_cast<int>(out.vertices.size());
-      const OmMesh::Point& p = om.point(handles[v]);
+      const OmMesh::Point& p = om.point(OmMesh::VertexHandle(v));
       out.vertices.emplace_back(p[0], p[1], p[2]);
     }
     return remap[v];

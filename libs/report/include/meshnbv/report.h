@@ -1,11 +1,14 @@
-// The visual report of a run: report.html (self-contained: pictures
-// embedded) plus the PNGs it shows.
+// The visual report of a run: report.html (pictures embedded) plus the PNGs
+// it shows, and its interactive 3-D view in viewer/ (the bundled viewer and
+// the data it shows, loaded by the page as classic scripts: it works
+// offline from file://).
 #pragma once
 
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "meshnbv/display_mesh.h"
 #include "meshnbv/planner.h"
 #include "meshnbv/pri.h"
 
@@ -39,6 +42,7 @@ struct ReportInputs {
   std::vector<std::pair<std::string, std::string>> files;   // file name, what it is
   int image_width = 960, image_height = 720;                // overview pictures
   int suggestion_views = 3;                                 // pictures from the top suggestions
+  std::size_t display_faces = kDefaultDisplayFaces;         // 3-D view: decimated above this many faces
   const ReportMission* mission = nullptr;                   // optional section
 };
 
@@ -47,8 +51,8 @@ struct ReportFiles {
   std::vector<std::string> pictures;
 };
 
-// Renders the pictures with our renderer and writes them and report.html
-// into `folder`. Progress stage "report".
+// Renders the pictures with our renderer and writes them, the 3-D view's
+// files (viewer/) and report.html into `folder`. Progress stage "report".
 ReportFiles write_report(const ReportInputs& inputs, const std::string& folder,
                          const ProgressCallback& progress = {});
 
