@@ -53,7 +53,7 @@ std::string join_metrics(const eval::EvaluationResult& m) {
 struct LoopArgs {
   std::string dataset, out, cache, strategy = "nbv", mode = "given";
   OptionFlags flags;
-  std::string bootstrap_views, thresholds, percentiles = "80,90,99", mesher = "delaunay",
+  std::string bootstrap_views, thresholds, percentiles = "80,90,99", mesher = "delaunay", backend = "sparse",
                                            labelling = "graphcut", facet_support = "any";
   eval::LoopOptions options;
   bool overwrite = false, quiet = false;
@@ -95,8 +95,45 @@ void add_selection_options(CLI::App* cmd, LoopArgs* a) {
       ->capture_default_str();
 }
 
-// The reconstruction backend: COLMAP's sparse points, then the mesher.
+// The dense backend's depth maps and fusion (dense_backend.h).
+void add_dense_options(CLI::App* cmd, LoopArgs* a) {
+  eval::DenseOptions& d = a->options.dense;
+  cmd->add_option("--dense-max-image-size", d.max_image_size,
+                  "dense: images with a longer side are downscaled before matching (pixels)")
+      ->capture_default_str();
+  cmd->add_option("--dense-partners", d.partners, "dense: stereo partners per view")->capture_default_str();
+  cmd->add_option("--dense-min-angle", d.min_angle,
+                  "dense: smallest median triangulation angle of a partner (degrees)")
+      ->capture_default_str();
+  cmd->add_option("--dense-max-angle", d.max_angle,
+                  "dense: largest median triangulation angle of a partner (degrees)")
+      ->capture_default_str();
+  cmd->add_option("--dense-block-size", d.block_size, "dense: semi-global matching block size (odd)")
+      ->capture_default_str();
+  cmd->add_option("--dense-min-texture", d.min_texture,
+                  "dense: no depth where the block's grey-level standard deviation is below this (0-255)")
+      ->capture_default_str();
+  cmd->add_option("--dense-min-agreeing", d.min_agreeing,
+                  "dense: pairs that must agree on a pixel's depth (1 = no consistency check)")
+      ->capture_default_str();
+  cmd->add_option("--dense-consistency", d.consistency,
+                  "dense: agreement tolerance, in pixels of disparity")
+      ->capture_default_str();
+  cmd->add_option("--dense-pixel-step", d.pixel_step, "dense: every n-th pixel of a depth map is a point")
+      ->capture_default_str();
+  cmd->add_option("--dense-max-points", d.max_points,
+                  "dense: fused points handed to the mesher (voxel grid coarsened above)")
+      ->capture_default_str();
+}
+
+// The reconstruction backend: COLMAP's sparse points (and depth maps), then the mesher.
 void add_reconstruction_options(CLI::App* cmd, LoopArgs* a) {
+  cmd->add_option("--backend", a->backend,
+                  "Points to mesh: sparse (COLMAP's triangulated features) or dense (depth maps of "
+                  "the selected views by semi-global matching, fused)")
+      ->check(CLI::IsMember({"sparse", "dense"}))
+      ->capture_default_str();
+  add_dense_options(cmd, a);
   cmd->add_option("--max-point-error", a->options.max_point_error,
                   "Sparse points with a larger reprojection error (pixels) are not meshed")
       ->capture_default_str();
@@ -173,6 +210,7 @@ void finish_loop_options(LoopArgs* a) {
   o.suggest.threads = o.pri.threads;
   o.seed = o.suggest.sampling.seed;
   o.mesher = eval::parse_mesher(a->mesher);
+  o.backend = eval::parse_backend(a->backend);
   o.delaunay.labelling = eval::parse_labelling(a->labelling);
   o.delaunay.facet_support = eval::parse_facet_support(a->facet_support);
   if (!a->bootstrap_views.empty()) {
@@ -223,7 +261,9 @@ void run_loop_command(const LoopArgs& a) {
         std::cout << "step " << s.step << ": " << s.views.size() << " views";
         if (!s.added.empty()) std::cout << " (+" << s.added << ", " << s.chosen_by << ")";
         std::cout << ", " << s.points << " points, " << s.faces << " faces; "
-                  << join_metrics(s.metrics) << "; " << std::setprecision(3)
+                  << join_metrics(s.metrics);
+        if (!s.failure.empty()) std::cout << "; FAILED: " << s.failure;
+        std::cout << "; " << std::setprecision(3)
                   << s.seconds_reconstruct + s.seconds_pri + s.seconds_choose + s.seconds_evaluate
                   << " s\n"
                   << std::flush;

@@ -61,7 +61,7 @@ Prepared prepare_recon(const test::QualityCase& c, const std::string& cache) {
   for (std::size_t i = 0; i < all.size(); ++i) all[i] = int(i);
   eval::LoopOptions lo;
   fs::create_directories(dir / "work");
-  const eval::Reconstruction r = eval::reconstruct(ws, all, (dir / "work").string(), lo);
+  const eval::Reconstruction r = eval::reconstruct(ws, all, (dir / "work").string(), lo, (dir / "loop").string());
   Prepared p;
   p.truth = d.truth;
   p.scene.mesh = r.mesh;

@@ -8,7 +8,15 @@ start_xvfb_screen() {
   while [ -e "/tmp/.X$display-lock" ]; do display=$((display + 1)); done
   mkdir -p "$work/fb"
   Xvfb ":$display" -screen 0 "$size" -fbdir "$work/fb" > "$work/xvfb.log" 2>&1 &
-  pids+=($!)
-  sleep 1
+  local server=$!
+  pids+=("$server")
+  # Ready when its socket exists (a loaded machine can take seconds).
+  local i
+  for i in $(seq 300); do
+    [ -S "/tmp/.X11-unix/X$display" ] && break
+    kill -0 "$server" 2>/dev/null || { echo "Xvfb :$display exited:"; cat "$work/xvfb.log"; return 1; }
+    sleep 0.1
+  done
+  [ -S "/tmp/.X11-unix/X$display" ] || { echo "Xvfb :$display did not start in 30 s"; return 1; }
   export DISPLAY=":$display"
 }

@@ -77,6 +77,7 @@ void LoopOptions::check() const {
   suggest.check();
   colmap.check();
   delaunay.check();
+  dense.check();
   evaluation.check();
 }
 
@@ -159,7 +160,23 @@ nlohmann::json step_json(const StepRecord& s) {
                   {"reference", s.metrics.reference_samples},
                   {"spacing", s.metrics.sample_spacing}};
   j["mesh"] = s.mesh_file;
+  if (!s.failure.empty()) j["failure"] = s.failure;
+  if (s.dense.pairs > 0 || !s.dense.failures.empty())
+    j["dense"] = {{"views", s.dense.views},
+                  {"pairs", s.dense.pairs},
+                  {"pairs_computed", s.dense.pairs_computed},
+                  {"depth_pixels", s.dense.depth_pixels},
+                  {"contradicted", s.dense.contradicted},
+                  {"raw_points", s.dense.raw_points},
+                  {"points", s.dense.points},
+                  {"voxel", s.dense.voxel},
+                  {"seconds_stereo", s.dense.seconds_stereo},
+                  {"seconds_fusion", s.dense.seconds_fusion},
+                  {"failures", s.dense.failures}};
   j["seconds"] = {{"reconstruct", s.seconds_reconstruct},
+                  {"sparse", s.seconds_sparse},
+                  {"dense", s.seconds_dense},
+                  {"mesh", s.seconds_mesh},
                   {"pri", s.seconds_pri},
                   {"choose", s.seconds_choose},
                   {"evaluate", s.seconds_evaluate}};
@@ -277,20 +294,43 @@ TriangleMesh poisson_mesh(const std::vector<SparsePoint>& points, const std::vec
 }
 
 Reconstruction reconstruct(const ColmapWorkspace& workspace, const std::vector<int>& selected,
-                           const std::string& work_dir, const LoopOptions& options) {
+                           const std::string& work_dir, const LoopOptions& options,
+                           const std::string& cache_dir) {
   const auto start = std::chrono::steady_clock::now();
   Reconstruction r;
   r.sparse = workspace.triangulate(selected, work_dir);
+  auto since = [](std::chrono::steady_clock::time_point t) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+  };
+  r.seconds_sparse = since(start);
+  const auto t_dense = std::chrono::steady_clock::now();
   std::vector<SparsePoint> points;
   for (std::size_t i = 0; i < r.sparse.points.size(); ++i)
     if (r.sparse.reprojection_errors[i] <= options.max_point_error) points.push_back(r.sparse.points[i]);
+  if (options.backend == BackendKind::Dense) {
+    points = dense_points(workspace.views(), selected, points, (fs::path(cache_dir) / "dense").string(),
+                          options.dense, &r.dense);
+    if (points.empty()) {
+      r.failure = "no dense points";
+      if (!r.dense.failures.empty()) r.failure += " (" + r.dense.failures.front() + ")";
+    }
+  } else if (points.empty()) {
+    r.failure = "no sparse points";
+  }
+  r.points = points.size();
+  r.seconds_dense = since(t_dense);
+  const auto t_mesh = std::chrono::steady_clock::now();
   std::vector<Vec3> centres;
   for (const View& v : workspace.views()) centres.push_back(v.camera.center());
-  if (options.mesher == MesherKind::Delaunay)
-    r.mesh = mesh_from_visibility(points, centres, options.delaunay).mesh;
-  else
-    r.mesh = poisson_mesh(points, centres, work_dir, options.colmap.executable, options.poisson);
-  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (!points.empty()) {
+    if (options.mesher == MesherKind::Delaunay)
+      r.mesh = mesh_from_visibility(points, centres, options.delaunay).mesh;
+    else
+      r.mesh = poisson_mesh(points, centres, work_dir, options.colmap.executable, options.poisson);
+    if (r.mesh.empty()) r.failure = "the mesher made no surface from " + std::to_string(points.size()) + " points";
+  }
+  r.seconds_mesh = since(t_mesh);
+  r.seconds = since(start);
   return r;
 }
 
@@ -352,6 +392,13 @@ struct Reference {
 std::string reference_key(const LoopOptions& options) {
   std::ostringstream key;
   key << "reference_v2_" << mesher_name(options.mesher) << "_" << options.max_point_error;
+  if (options.backend == BackendKind::Dense) {
+    const DenseOptions& d = options.dense;
+    key << "_dense_" << d.max_image_size << "_" << d.partners << "_" << d.min_shared_points << "_"
+        << d.min_angle << "_" << d.max_angle << "_" << d.target_angle << "_" << d.block_size << "_"
+        << d.uniqueness << "_" << d.min_texture << "_" << d.min_agreeing << "_" << d.consistency << "_" << d.pixel_step << "_"
+        << d.max_points;
+  }
   if (options.mesher == MesherKind::Delaunay)
     key << "_" << labelling_name(options.delaunay.labelling) << "_" << options.delaunay.surface_weight
         << "_" << options.delaunay.min_component_share << "_" << options.delaunay.max_spread << "_"
@@ -387,7 +434,7 @@ Reference loop_reference(const Dataset& dataset, const std::vector<PinholeCamera
     report_progress(progress, 0.0, "reference");
     std::vector<int> all(n);
     for (std::size_t i = 0; i < n; ++i) all[i] = int(i);
-    ref.mesh = reconstruct(ws, all, (cache / "reference_work").string(), options).mesh;
+    ref.mesh = reconstruct(ws, all, (cache / "reference_work").string(), options, cache.string()).mesh;
     if (ref.mesh.empty()) throw Error("the reconstruction from all views is empty: no reference");
     io::write_ply(ref.mesh, ref_file.string());
   }
@@ -465,7 +512,12 @@ StepRecord measure_step(const LoopContext& ctx, int step, const Selection& sel, 
   rec.step = step;
   for (int i : sel.selected) rec.views.push_back(ctx.ws.views()[std::size_t(i)].label);
   rec.seconds_reconstruct = recon.seconds;
-  rec.points = recon.sparse.points.size();
+  rec.seconds_sparse = recon.seconds_sparse;
+  rec.seconds_dense = recon.seconds_dense;
+  rec.seconds_mesh = recon.seconds_mesh;
+  rec.points = recon.points;
+  rec.failure = recon.failure;
+  rec.dense = recon.dense;
   rec.faces = recon.mesh.num_faces();
   rec.metrics = evaluate_reconstruction(recon.mesh, reference, eo);
   rec.seconds_evaluate = rec.metrics.seconds;
@@ -494,6 +546,7 @@ nlohmann::json loop_json(const LoopContext& ctx, const LoopResult& result, const
                   {"max_views", ctx.max_views},
                   {"seed", options.seed},
                   {"candidates", candidate_mode_name(options.nbv_candidates)},
+                  {"backend", backend_name(options.backend)},
                   {"mesher", mesher_name(options.mesher)},
                   {"labelling", labelling_name(options.delaunay.labelling)},
                   {"surface_weight", options.delaunay.surface_weight},
@@ -689,7 +742,7 @@ LoopResult run_loop(const Dataset& dataset, const LoopOptions& options,
   for (int step = 0;; ++step) {
     report_progress(progress, double(sel.selected.size()) / double(ctx.max_views), "loop");
     const std::string step_dir = (work / ("step_" + two_digits(step))).string();
-    const Reconstruction recon = reconstruct(ws, sel.selected, step_dir, options);
+    const Reconstruction recon = reconstruct(ws, sel.selected, step_dir, options, cache.string());
     if (!options.keep_work) fs::remove_all(step_dir);
     const bool last = sel.selected.size() >= ctx.max_views || (!continuous && sel.remaining.empty());
     StepRecord rec = measure_step(ctx, step, sel, recon, reference.mesh, eo, snapshot_from, last);

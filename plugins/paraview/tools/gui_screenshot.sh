@@ -23,12 +23,13 @@ trap cleanup EXIT
 export HOME=$WORK/home XDG_CONFIG_HOME=$WORK/home/.config
 mkdir -p "$XDG_CONFIG_HOME/ParaView"
 
-MESHNBV_PARAVIEW_PLUGIN=$PLUGIN xvfb-run -a -s "-screen 0 1280x1024x24" "$HERE/pvpython" \
-  "$REPO/sample_projects/paraview/meshnbv_sample.py" --state "$WORK/sample.pvsm" > "$WORK/pvpython.log" 2>&1 ||
-  { cat "$WORK/pvpython.log"; exit 1; }
-
+# One X server of our own for both steps (xvfb-run -a can hand a display
+# to two scripts started at once).
 source "$REPO/tests/support/xvfb_screen.bash"
 start_xvfb_screen "$WORK" 1280x900x24
+MESHNBV_PARAVIEW_PLUGIN=$PLUGIN "$HERE/pvpython" \
+  "$REPO/sample_projects/paraview/meshnbv_sample.py" --state "$WORK/sample.pvsm" > "$WORK/pvpython.log" 2>&1 ||
+  { cat "$WORK/pvpython.log"; exit 1; }
 PV_PLUGIN_PATH=$(dirname "$PLUGIN") paraview --state="$WORK/sample.pvsm" \
   > "$WORK/gui.log" 2>&1 &
 pids+=($!)

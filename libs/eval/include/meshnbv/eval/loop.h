@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "meshnbv/eval/colmap_backend.h"
+#include "meshnbv/eval/dense_backend.h"
 #include "meshnbv/eval/metrics.h"
 #include "meshnbv/eval/strategies.h"
 #include "meshnbv/eval/visibility_mesher.h"
@@ -70,6 +71,11 @@ struct LoopOptions {
   // Sparse points with a larger mean reprojection error (pixels) are not
   // meshed (COLMAP keeps up to 4 px; wrong matches sit mostly above 1 px).
   double max_point_error = 2.0;
+  // Sparse: the mesher gets COLMAP's points; Dense: depth maps of the
+  // selected views (disparity range and partners from those points) fused
+  // into dense points (docs/evaluation.md).
+  BackendKind backend = BackendKind::Sparse;
+  DenseOptions dense;
   MesherKind mesher = MesherKind::Delaunay;
   VisibilityMesherOptions delaunay;
   PoissonOptions poisson;
@@ -102,6 +108,12 @@ struct StepRecord {
   std::size_t points = 0, faces = 0;
   EvaluationResult metrics;
   std::string mesh_file;        // relative to out_dir; empty when not saved
+  // Why the reconstruction failed or came out empty (the loop goes on);
+  // empty when it did not.
+  std::string failure;
+  DenseStats dense;             // dense backend: depth maps and fusion
+  // reconstruct = sparse (COLMAP) + dense (depth maps, fusion) + mesh.
+  double seconds_sparse = 0, seconds_dense = 0, seconds_mesh = 0;
   double seconds_reconstruct = 0, seconds_pri = 0, seconds_choose = 0, seconds_evaluate = 0;
   // nbv: faces whose PRI the step computed (incremental PRI) of pri_faces.
   std::size_t pri_recomputed = 0, pri_faces = 0;
@@ -123,14 +135,21 @@ LoopResult run_loop(const Dataset& dataset, const LoopOptions& options,
                     const std::function<void(const StepRecord&)>& on_step = {});
 
 // Reconstruction of the views `selected` of the workspace: COLMAP points,
-// then the chosen mesher. Also used for the all-views reference.
+// with the dense backend depth maps fused into points (their disparity
+// maps cached in `cache_dir`), then the chosen mesher. Also used for the
+// all-views reference.
 struct Reconstruction {
   SparseModel sparse;
+  std::size_t points = 0;   // meshed points (sparse or dense) before the mesher's filters
+  DenseStats dense;
   TriangleMesh mesh;
-  double seconds = 0;
+  std::string failure;      // why the mesh is empty, when it is
+  double seconds = 0;       // all of it: sparse + dense + mesh
+  double seconds_sparse = 0, seconds_dense = 0, seconds_mesh = 0;
 };
 Reconstruction reconstruct(const ColmapWorkspace& workspace, const std::vector<int>& selected,
-                           const std::string& work_dir, const LoopOptions& options);
+                           const std::string& work_dir, const LoopOptions& options,
+                           const std::string& cache_dir);
 
 // Poisson surface from the points through `colmap poisson_mesher`, normals
 // by PCA over nearest neighbours, oriented towards the cameras that saw
