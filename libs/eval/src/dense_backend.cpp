@@ -205,7 +205,7 @@ void canonical_maps(const PairGeometry& g, const PinholeCamera& cam, const Mat3&
 // The disparity range (canonical pixels) of scene depths [zmin, zmax]
 // along the reference's axis, sampled over the reference image.
 std::pair<double, double> disparity_range(const PairGeometry& g, const PinholeCamera& ref, double zmin,
-                                          double zmax) {
+                                          double zmax, const std::vector<Vec3>& points) {
   double lo = 1e300, hi = -1e300;
   for (int i = 0; i <= 8; ++i)
     for (int j = 0; j <= 8; ++j) {
@@ -221,6 +221,23 @@ std::pair<double, double> disparity_range(const PairGeometry& g, const PinholeCa
       }
     }
   if (!(hi >= lo)) throw Error("the depth range lies behind the rectified pair");
+  // Where the scene's points are: their disparities (2nd to 98th
+  // percentile) widened by a quarter of their spread and 4 pixels on each
+  // side, within the range of the depth bounds over the whole image.
+  std::vector<double> d;
+  for (const Vec3& X : points) {
+    const Vec3 x_rect = g.R1 * ref.world_to_camera(X);
+    if (x_rect.z() > 0) d.push_back(g.f() * g.baseline / x_rect.z() + g.offset);
+  }
+  if (d.size() >= 10) {
+    std::sort(d.begin(), d.end());
+    const double p_lo = d[std::size_t(0.02 * double(d.size() - 1))];
+    const double p_hi = d[std::size_t(std::ceil(0.98 * double(d.size() - 1)))];
+    const double margin = 0.25 * (p_hi - p_lo) + 4.0;
+    lo = std::max(lo, p_lo - margin);
+    hi = std::min(hi, p_hi + margin);
+    if (!(hi > lo)) throw Error("the scene's points lie outside the depth range");
+  }
   return {lo, hi};
 }
 
@@ -242,12 +259,13 @@ void sgbm_range(double lo, double hi, int* min_disparity, int* num_disparities) 
 
 DepthMap stereo_depth(const PinholeCamera& ref, const Image& ref_image, const PinholeCamera& other,
                       const Image& other_image, double min_depth, double max_depth,
-                      const DenseOptions& options, const std::string& disparity_png) {
+                      const DenseOptions& options, const std::string& disparity_png,
+                      const std::vector<Vec3>& scene_points) {
   if (!(min_depth > 0 && max_depth > min_depth && std::isfinite(max_depth)))
     throw Error("stereo: empty depth range [" + std::to_string(min_depth) + ", " +
                 std::to_string(max_depth) + "]");
   const PairGeometry g = rectify(ref, other);
-  const auto [dlo, dhi] = disparity_range(g, ref, min_depth, max_depth);
+  const auto [dlo, dhi] = disparity_range(g, ref, min_depth, max_depth, scene_points);
   int min_disp = 0, num_disp = 0;
   sgbm_range(dlo, dhi, &min_disp, &num_disp);
 
@@ -406,6 +424,7 @@ struct Partner {
 struct ViewPlan {
   int view = -1;
   double zmin = 0, zmax = 0;
+  std::vector<Vec3> points;  // sparse points the view sees
   std::vector<Partner> partners;
 };
 
@@ -430,7 +449,10 @@ std::vector<ViewPlan> plan_views(const std::vector<View>& views, const std::vect
     for (std::size_t p : seen_by[std::size_t(r)]) {
       const Vec3& X = sparse[p].position;
       const double z = vr.camera.depth(X);
-      if (z > 0) depths.push_back(z);
+      if (z > 0) {
+        depths.push_back(z);
+        plan.points.push_back(X);
+      }
       const Vec3 to_r = (vr.camera.center() - X).normalized();
       for (int q : sparse[p].views)
         if (q != r && q >= 0 && std::size_t(q) < views.size() && is_selected[std::size_t(q)]) {
@@ -586,7 +608,7 @@ std::vector<SparsePoint> dense_points(const std::vector<View>& views, const std:
       try {
         // The cache key: both images and cameras, the rounded disparity range, the matcher.
         const PairGeometry g = rectify(cam_r, cam_p);
-        const auto [lo, hi] = disparity_range(g, cam_r, plan.zmin, plan.zmax);
+        const auto [lo, hi] = disparity_range(g, cam_r, plan.zmin, plan.zmax, plan.points);
         int mn = 0, num = 0;
         sgbm_range(lo, hi, &mn, &num);
         const std::string key = key_params + "\n" + file_key(vr.image_path) + "\n" + camera_key(cam_r) +
@@ -598,7 +620,7 @@ std::vector<SparsePoint> dense_points(const std::vector<View>& views, const std:
         bool matched = false;
         if (fs::exists(png)) {
           try {
-            map = stereo_depth(cam_r, Image(), cam_p, Image(), plan.zmin, plan.zmax, o, png);
+            map = stereo_depth(cam_r, Image(), cam_p, Image(), plan.zmin, plan.zmax, o, png, plan.points);
           } catch (const Error&) {
             std::error_code ec;
             fs::remove(png, ec);
@@ -606,7 +628,7 @@ std::vector<SparsePoint> dense_points(const std::vector<View>& views, const std:
         }
         if (map.depth.empty()) {
           const auto ir = images.get(plan.view), ip = images.get(partner.view);
-          map = stereo_depth(cam_r, *ir, cam_p, *ip, plan.zmin, plan.zmax, o, png);
+          map = stereo_depth(cam_r, *ir, cam_p, *ip, plan.zmin, plan.zmax, o, png, plan.points);
           matched = true;
         }
         maps.push_back(std::move(map));

@@ -42,7 +42,7 @@ struct DenseOptions {
   // min(1, angle / target_angle)^2.
   int partners = 4;
   int min_shared_points = 10;
-  double min_angle = 3.0, max_angle = 45.0, target_angle = 15.0;
+  double min_angle = 3.0, max_angle = 60.0, target_angle = 15.0;
   // Semi-global matching (OpenCV StereoSGBM): block size (odd), uniqueness
   // ratio (%), and the smoothness penalties P1 = 8 b^2, P2 = 32 b^2.
   int block_size = 5;
@@ -82,10 +82,12 @@ PinholeCamera resized_camera(const PinholeCamera& camera, int width, int height)
 // max_depth] along `ref`'s axis. Throws Error when the pair cannot be
 // rectified (no baseline) or the depth range is empty. `disparity_png`,
 // when given, is where the disparity map is read from if it exists, and
-// written to if not (a cache entry).
+// written to if not (a cache entry). `scene_points` (world; at least 10 to
+// count), when given, narrow the searched disparities to where they lie.
 DepthMap stereo_depth(const PinholeCamera& ref, const Image& ref_image, const PinholeCamera& other,
                       const Image& other_image, double min_depth, double max_depth,
-                      const DenseOptions& options, const std::string& disparity_png = {});
+                      const DenseOptions& options, const std::string& disparity_png = {},
+                      const std::vector<Vec3>& scene_points = {});
 
 struct DenseStats {
   std::size_t views = 0;            // views with a depth map
