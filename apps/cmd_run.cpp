@@ -33,6 +33,7 @@ void add_run_command(CLI::App& app) {
     std::string out;
     bool overwrite = false;
     int display_faces = int(kDefaultDisplayFaces);
+    int interaction_faces = int(kDefaultInteractionFaces);
   };
   auto a = std::make_shared<Args>();
   CLI::App* cmd = app.add_subcommand(
@@ -45,6 +46,11 @@ void add_run_command(CLI::App& app) {
   cmd->add_flag("--overwrite", a->overwrite, "Write into a folder that already holds results");
   cmd->add_option("--display-faces", a->display_faces,
                   "Face budget of the report's 3-D view: a larger mesh is shown decimated to this many faces")
+      ->check(CLI::Range(100, 100000000))
+      ->capture_default_str();
+  cmd->add_option("--interaction-faces", a->interaction_faces,
+                  "Face budget of the 3-D view while the camera moves: a coarser copy is drawn then "
+                  "(none when the display mesh is not larger)")
       ->check(CLI::Range(100, 100000000))
       ->capture_default_str();
   a->progress.add_to(cmd);
@@ -149,6 +155,7 @@ void add_run_command(CLI::App& app) {
       r.files.push_back({"mission", "drone mission of the suggestions: KML, DJI WPML KMZ, Litchi CSV, GeoJSON, CSV"});
     r.mission = &report_mission;
     r.display_faces = std::size_t(a->display_faces);
+    r.interaction_faces = std::size_t(a->interaction_faces);
     const ReportFiles files = write_report(r, out.string(), bar.callback());
     bar.finish();
     std::cout << scene.mesh.num_faces() << " faces: " << pri.observed << " observed, " << pri.unobserved

@@ -69,6 +69,8 @@ DisplayMesh display_mesh(const TriangleMesh& mesh, std::size_t max_faces) {
     d.mesh.faces = mesh.faces;
     d.display_face.resize(n);
     for (std::size_t f = 0; f < n; ++f) d.display_face[f] = int(f);
+    d.source_vertex.resize(mesh.vertices.size());
+    for (std::size_t v = 0; v < mesh.vertices.size(); ++v) d.source_vertex[v] = int(v);
     fill_members(&d);
     return d;
   }
@@ -102,6 +104,7 @@ DisplayMesh display_mesh(const TriangleMesh& mesh, std::size_t max_faces) {
       vertex_index[std::size_t(v)] = int(d.mesh.vertices.size());
       const OmMesh::Point& p = om.point(OmMesh::VertexHandle(v));
       d.mesh.vertices.emplace_back(p[0], p[1], p[2]);
+      d.source_vertex.push_back(v);  // to_openmesh adds the vertices in order
     }
     return vertex_index[std::size_t(v)];
   };
@@ -161,6 +164,21 @@ DisplayMesh display_mesh(const TriangleMesh& mesh, std::size_t max_faces) {
   d.decimated = true;
   fill_members(&d);
   return d;
+}
+
+CoarseDisplayMesh coarse_display_mesh(const DisplayMesh& display, std::size_t max_faces) {
+  if (max_faces == 0) throw Error("interaction mesh: the face budget must be at least 1");
+  DisplayMesh step = display_mesh(display.mesh, max_faces);  // display faces -> coarse faces
+  CoarseDisplayMesh out;
+  out.coarse_face = std::move(step.display_face);
+  out.mesh.mesh = std::move(step.mesh);
+  out.mesh.source_vertex = std::move(step.source_vertex);
+  out.mesh.decimated = display.decimated || step.decimated;
+  out.mesh.display_face.resize(display.display_face.size());
+  for (std::size_t f = 0; f < display.display_face.size(); ++f)
+    out.mesh.display_face[f] = out.coarse_face[std::size_t(display.display_face[f])];
+  fill_members(&out.mesh);
+  return out;
 }
 
 DisplayPri display_pri(const DisplayMesh& display, const TriangleMesh& original, const PriResult& pri,

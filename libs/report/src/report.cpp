@@ -190,6 +190,10 @@ void write_viewer_section(std::ostream& h, const report_detail::ViewerFiles& v) 
          "the original face nearest the point).";
   else
     h << "Display mesh: the " << v.original_faces << " faces of the mesh.";
+  if (v.interaction_faces > 0)
+    h << " While the camera moves the view draws a coarser copy of " << v.interaction_faces
+      << " faces (the same decimation, each face the area-weighted mean PRI of the faces it stands for), and the "
+      << v.display_faces << " display faces again as soon as it rests.";
   h << "</p>\n<div id=\"meshnbv-viewer\"><noscript>The 3-D view needs JavaScript.</noscript></div>\n"
     << "<script src=\"" << v.folder << "/report_data.js\"></script>\n<script src=\"" << v.folder
     << "/meshnbv_viewer.js\"></script>\n";

@@ -130,6 +130,47 @@ ViewerFiles write_viewer(const ReportInputs& in, const std::string& report_folde
                   {"centroid_extent", vec3(extent)}};
   }
 
+  // The interaction level of detail: a coarser copy drawn while the camera
+  // moves, sharing the display mesh's positions (its vertices are display
+  // vertices), its faces coloured from the area-weighted PRI of the original
+  // faces each stands for. None when the display mesh is small enough.
+  json interaction = nullptr;
+  if (in.interaction_faces == 0) throw Error("report: the interaction face budget must be at least 1");
+  if (display.mesh.num_faces() > in.interaction_faces) {
+    const CoarseDisplayMesh coarse = coarse_display_mesh(display, in.interaction_faces);
+    const TriangleMesh& cm = coarse.mesh.mesh;
+    const DisplayPri coarse_shown = display_pri(coarse.mesh, mesh, pri, kLowTexture);
+    std::vector<std::uint8_t> coarse_colours;
+    coarse_colours.reserve(cm.faces.size() * 3);
+    for (const Rgb8& c : pri_colors(coarse_shown.pri, range.first, range.second))
+      coarse_colours.insert(coarse_colours.end(), c.begin(), c.end());
+    std::vector<std::uint32_t> vertices(coarse.mesh.source_vertex.begin(), coarse.mesh.source_vertex.end());
+    // Indices and the display-to-coarse map in 16 bits when they fit.
+    auto narrow = [](const std::vector<std::uint32_t>& v, std::size_t bound) {
+      if (bound <= 65536) {
+        std::vector<std::uint16_t> n16(v.begin(), v.end());
+        return typed_array("Uint16Array", n16);
+      }
+      return typed_array("Uint32Array", v);
+    };
+    std::vector<std::uint32_t> coarse_indices;
+    coarse_indices.reserve(cm.faces.size() * 3);
+    for (const Face& f : cm.faces)
+      for (int k = 0; k < 3; ++k) coarse_indices.push_back(std::uint32_t(f[std::size_t(k)]));
+    const std::vector<std::uint32_t> of_display(coarse.coarse_face.begin(), coarse.coarse_face.end());
+    arrays["interaction_vertices"] = typed_array("Uint32Array", vertices);
+    arrays["interaction_indices"] = narrow(coarse_indices, cm.vertices.size());
+    arrays["interaction_colours"] = typed_array("Uint8Array", coarse_colours);
+    arrays["interaction_flags"] = typed_array("Uint8Array", coarse_shown.flags);
+    arrays["interaction_face_of_display"] = narrow(of_display, cm.faces.size());
+    out.interaction_faces = cm.num_faces();
+    interaction = {{"faces", out.interaction_faces},
+                   {"budget", in.interaction_faces},
+                   {"method", "the display mesh decimated again (OpenMesh quadric edge collapses), drawn while the "
+                              "camera moves; a face shows the area-weighted mean PRI of the original faces it "
+                              "stands for"}};
+  }
+
   json cameras = json::array();
   const double diag = box.diagonal();
   for (const View& v : scene.views) {
@@ -176,6 +217,7 @@ ViewerFiles write_viewer(const ReportInputs& in, const std::string& report_folde
                {"display_budget", in.display_faces},
                {"decimated", out.decimated},
                {"decimation", decimation},
+               {"interaction", interaction},
                {"cameras", cameras},
                {"suggestions", suggestions},
                {"regions", regions},

@@ -14,6 +14,7 @@ namespace meshnbv::report_detail {
 
 struct ViewerFiles {
   std::size_t original_faces = 0, display_faces = 0;
+  std::size_t interaction_faces = 0;  // the coarser mesh drawn while the camera moves; 0: none
   bool decimated = false;
   std::string folder = "viewer";  // relative to the report
 };

@@ -43,6 +43,9 @@ struct ReportInputs {
   int image_width = 960, image_height = 720;                // overview pictures
   int suggestion_views = 3;                                 // pictures from the top suggestions
   std::size_t display_faces = kDefaultDisplayFaces;         // 3-D view: decimated above this many faces
+  std::size_t interaction_faces = kDefaultInteractionFaces; // 3-D view while the camera moves: a coarser copy
+                                                            // of at most this many faces (none when the
+                                                            // display mesh has no more)
   const ReportMission* mission = nullptr;                   // optional section
 };
 

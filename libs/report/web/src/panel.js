@@ -114,9 +114,9 @@ export class Panel {
   }
 
   setStatus(status, d) {
-    status.textContent = d.decimated
-      ? `display mesh decimated from ${d.faces} to ${d.display_faces} faces`
-      : `${d.faces} faces`;
+    let text = d.decimated ? `display mesh decimated from ${d.faces} to ${d.display_faces} faces` : `${d.faces} faces`;
+    if (d.interaction) text += `; ${d.interaction.faces} faces while turning`;
+    status.textContent = text;
   }
 
   setActive(suggestion, region) {

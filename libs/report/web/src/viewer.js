@@ -4,7 +4,10 @@
 // percentiles, grey unobserved, weak evidence striped), the existing
 // cameras (blue) and the suggestions (red .. yellow); orbit controls; a
 // suggestion clicked puts the camera at its pose with its intrinsics; a
-// face clicked shows its values; a region clicked is framed.
+// face clicked shows its values; a region clicked is framed. Above the
+// interaction budget (data.interaction), a coarser copy of the mesh is drawn
+// while the camera moves and the display mesh again REST_MS after its last
+// move; picking always uses the display mesh.
 // window.meshnbvViewer is a small read-back API for tests and the bench.
 import {
   PerspectiveCamera, Raycaster, Scene, Vector2, Vector3, WebGLRenderer,
@@ -18,9 +21,16 @@ import {
 } from './frustums.js';
 import { Panel } from './panel.js';
 import { addStyles } from './style.js';
-import { HIGHLIGHT_PICKED, HIGHLIGHT_REGION, buildSurface } from './surface.js';
+import {
+  HIGHLIGHT_PICKED, HIGHLIGHT_REGION, buildSurface, displayArrays, interactionArrays, setMarkWeak, surfaceMaterial,
+} from './surface.js';
 
 const ORBIT_FOV = 45;  // degrees, vertical, outside a suggestion's view
+// The display mesh is drawn again this long after the camera's last move
+// (the interaction mesh in between): long enough to span the gaps between
+// the events of a drag, short enough to read as "as soon as it rests".
+const REST_MS = 150;
+const RECENT_FRAMES = 200;
 
 class Viewer {
   constructor(container, data) {
@@ -59,8 +69,18 @@ class Viewer {
     this.renderer.setPixelRatio(Math.min(window.devicePixelRatio || 1, 2));
     this.renderer.setClearColor(0xffffff, 1);
     this.scene = new Scene();
-    this.surface = buildSurface(data);
+    this.material = surfaceMaterial();
+    this.surface = buildSurface(displayArrays(data), this.material);
     this.scene.add(this.surface.mesh);
+    this.proxy = null;  // the interaction mesh, built after the first frame
+    this.interacting = false;  // the camera moved less than REST_MS ago
+    this.restTimer = null;
+    this.highlights = [];
+    this.timing = false;  // each frame rendered to completion and logged (bench)
+    this.frames = [];
+    this.lastFrame = null;
+    this.recent = [];  // the last RECENT_FRAMES frames drawn (read-back API)
+    this.lastChange = 0;
 
     this.existing = buildFrustums(data.cameras.map((view) => ({
       view, centre: centreOf(view, this.origin), colour: EXISTING_COLOUR,
@@ -92,7 +112,8 @@ class Viewer {
     this.camera.up.copy(this.up);
     this.controls = new OrbitControls(this.camera, this.canvas);
     this.controls.addEventListener('start', () => this.leaveView());
-    this.controls.addEventListener('change', () => this.requestRender());
+    // The user moved the camera (a programmatic jump sets this.jumping).
+    this.controls.addEventListener('change', () => (this.jumping ? this.requestRender() : this.cameraMoved()));
     this.raycaster = new Raycaster();
     this.setupPicking();
 
@@ -105,6 +126,7 @@ class Viewer {
     this.syncGpu();
     this.firstFrameMs = performance.now();
     this.panel.setStatus(this.status, data);
+    if (data.interaction) setTimeout(() => this.warmProxy(), 0);
   }
 
   // ------------------------------------------------------------ rendering
@@ -126,7 +148,60 @@ class Viewer {
     });
   }
 
+  // The camera moves: the interaction mesh until REST_MS after the last move.
+  cameraMoved() {
+    this.lastChange = performance.now();
+    if (this.data.interaction) {
+      this.interacting = true;
+      clearTimeout(this.restTimer);
+      this.restTimer = setTimeout(() => this.rest(), REST_MS);
+    }
+    this.requestRender();
+  }
+
+  rest() {
+    this.restTimer = null;
+    this.interacting = false;
+    this.requestRender();
+  }
+
+  // A jump (overview, a suggestion, a region): the display mesh at once.
+  settle() {
+    clearTimeout(this.restTimer);
+    this.restTimer = null;
+    this.interacting = false;
+  }
+
+  // Builds the interaction mesh on first use; false when there is none.
+  ensureProxy() {
+    if (!this.data.interaction) return false;
+    if (!this.proxy) {
+      this.proxy = buildSurface(interactionArrays(this.data), this.material);
+      this.proxy.mesh.visible = false;
+      this.proxyOf = this.data.array('interaction_face_of_display');
+      this.scene.add(this.proxy.mesh);
+      this.applyHighlights();
+    }
+    return true;
+  }
+
+  // Builds the interaction mesh and draws it once, then the display mesh
+  // again in the same task (so the page only ever shows the latter): its
+  // buffers' upload and first draw, hundreds of milliseconds in software
+  // WebGL, are then not paid by the first frame of the first drag.
+  warmProxy() {
+    if (this.proxy || !this.ensureProxy()) return;
+    this.surface.mesh.visible = false;
+    this.proxy.mesh.visible = true;
+    this.renderer.render(this.scene, this.camera);
+    this.renderNow();
+  }
+
   renderNow() {
+    const t0 = performance.now();
+    const coarse = this.interacting && this.ensureProxy();
+    this.surface.mesh.visible = !coarse;
+    if (this.proxy) this.proxy.mesh.visible = coarse;
     const distance = this.camera.position.length();
     const far = (distance + this.sceneRadius) * 1.5;
     const near = far / 20000;
@@ -145,7 +220,21 @@ class Viewer {
       this.frame.style.display = 'none';
     }
     this.renderer.render(this.scene, this.camera);
+    // What was drawn, read back from three.js's own count.
+    this.lastFrame = {
+      level: coarse ? 'interaction' : 'full',
+      triangles: this.renderer.info.render.triangles,
+      at: t0,
+      sinceChange: t0 - this.lastChange,
+    };
+    this.recent.push(this.lastFrame);
+    if (this.recent.length > RECENT_FRAMES) this.recent.shift();
     this.placeLabels();
+    if (this.timing) {
+      this.syncGpu();
+      this.lastFrame.ms = performance.now() - t0;
+      this.frames.push(this.lastFrame);
+    }
   }
 
   syncGpu() {
@@ -195,12 +284,15 @@ class Viewer {
 
   orbitAround(target, direction, distance) {
     this.leaveView();
+    this.settle();
     this.camera.fov = ORBIT_FOV;
     this.controls.target.copy(target);
     this.camera.position.copy(target).addScaledVector(direction.clone().normalize(), Math.max(distance, 1e-9));
     this.camera.up.copy(this.up);
     this.camera.lookAt(target);
+    this.jumping = true;
     this.controls.update();
+    this.jumping = false;
     this.requestRender();
   }
 
@@ -208,6 +300,7 @@ class Viewer {
   lookThrough(i) {
     const s = this.data.suggestions[i];
     if (!s) throw new Error(`no suggestion ${i}`);
+    this.settle();
     this.mode = 'view';
     this.active = i;
     this.camera.position.copy(centreOf(s, this.origin));
@@ -255,7 +348,7 @@ class Viewer {
   toggle(what, on) {
     if (what === 'cameras') this.existing.visible = on;
     if (what === 'suggestions') this.suggested.visible = on;
-    if (what === 'weak') this.surface.setMarkWeak(on);
+    if (what === 'weak') setMarkWeak(this.material, on);
     this.requestRender();
   }
 
@@ -300,6 +393,7 @@ class Viewer {
     const rect = this.canvas.getBoundingClientRect();
     const ndc = new Vector2(((clientX - rect.left) / rect.width) * 2 - 1, -((clientY - rect.top) / rect.height) * 2 + 1);
     this.raycaster.setFromCamera(ndc, this.camera);
+    // Always the display mesh, whichever level is on screen.
     const hit = this.raycaster.intersectObject(this.surface.mesh, false)[0];
     if (!hit) {
       this.picked = null;
@@ -310,6 +404,8 @@ class Viewer {
     const displayFace = hit.faceIndex;
     const face = this.originalFaceAt(displayFace, hit.point);
     this.picked = this.faceInfo(face, displayFace, hit.point);
+    // The level on screen when picked (the pick itself is on the display mesh).
+    this.picked.on_screen = this.lastFrame ? this.lastFrame.level : null;
     this.highlight();
     this.panel.showPicked(this.picked);
     return this.picked;
@@ -395,45 +491,129 @@ class Viewer {
       for (const f of this.data.regions[this.regionShown].faces) list.push([this.displayFaceOf(f), HIGHLIGHT_REGION]);
     }
     if (this.picked) list.push([this.picked.display_face, HIGHLIGHT_PICKED]);
-    this.surface.setHighlights(list);
+    this.highlights = list;
+    this.applyHighlights();
     this.requestRender();
+  }
+
+  // The highlights on the display mesh, and on the interaction mesh the
+  // faces that stand for them.
+  applyHighlights() {
+    this.surface.setHighlights(this.highlights);
+    if (this.proxy) this.proxy.setHighlights(this.highlights.map(([f, kind]) => [this.proxyOf[f], kind]));
   }
 
   // ------------------------------------------------------------ bench
 
   // Turns the camera about the up axis through the target, `degrees` per
-  // frame, rendering each frame to completion; milliseconds per frame.
-  orbitFrames(frames, degrees = 6) {
+  // frame, as a drag does (each step a camera move: the interaction mesh),
+  // rendering each frame to completion; per frame { level, triangles, ms }.
+  // With { level: 'full' } every frame draws the display mesh (the view
+  // without its interaction mesh, for comparison).
+  orbitFrames(frames, degrees = 6, { level } = {}) {
     this.leaveView();
-    const times = [];
+    if (level === 'full') this.settle();
+    const timing = this.timing;
+    this.timing = true;
+    this.frames = [];
     const angle = (degrees * Math.PI) / 180;
     for (let k = 0; k < frames; ++k) {
-      const t0 = performance.now();
       const offset = this.camera.position.clone().sub(this.controls.target).applyAxisAngle(this.up, angle);
       this.camera.position.copy(this.controls.target).add(offset);
       this.camera.lookAt(this.controls.target);
+      if (level === 'full') this.lastChange = performance.now();
+      else this.cameraMoved();
       this.renderNow();
-      this.syncGpu();
-      times.push(performance.now() - t0);
     }
+    this.jumping = true;
     this.controls.update();
-    return times;
+    this.jumping = false;
+    const out = this.frames;
+    this.frames = [];
+    this.timing = timing;
+    return out;
+  }
+
+  // Resolves when the display mesh has been drawn again after the camera's
+  // last move (drawn at once when the camera rests already and no such
+  // frame was timed): that frame's { level, triangles, ms (rendered to
+  // completion), sinceChange (from the last move to the frame's start),
+  // doneAfterChange (to its completion) }.
+  whenRested() {
+    return new Promise((resolve) => {
+      const timing = this.timing;
+      this.timing = true;
+      const done = (f) => f && f.level === 'full' && f.at >= this.lastChange && f.ms !== undefined;
+      if (!this.interacting && !done(this.lastFrame)) this.renderNow();
+      const check = () => {
+        if (!this.interacting && done(this.lastFrame)) {
+          this.timing = timing;
+          const f = this.lastFrame;
+          resolve({ ...f, doneAfterChange: f.at + f.ms - this.lastChange });
+        } else setTimeout(check, 5);
+      };
+      check();
+    });
+  }
+
+  // The frame as drawn at canvas points ([x, y] in CSS pixels of the
+  // canvas), for tests: per point the pixel's rgb, and the face a ray
+  // through the pixel's centre hits on the mesh on screen, with that face's
+  // colour in the data (null where no face is hit).
+  drawnAt(points) {
+    this.renderNow();
+    const level = this.lastFrame.level;
+    const surface = level === 'interaction' ? this.proxy : this.surface;
+    const colours = this.data.array(level === 'interaction' ? 'interaction_colours' : 'colours');
+    const gl = this.renderer.getContext();
+    const ratio = this.renderer.getPixelRatio();
+    const pixel = new Uint8Array(4);
+    return points.map(([x, y]) => {
+      const px = Math.floor(x * ratio);
+      const py = Math.floor(y * ratio);
+      gl.readPixels(px, gl.drawingBufferHeight - 1 - py, 1, 1, gl.RGBA, gl.UNSIGNED_BYTE, pixel);
+      const ndc = new Vector2(((px + 0.5) / gl.drawingBufferWidth) * 2 - 1, -((py + 0.5) / gl.drawingBufferHeight) * 2 + 1);
+      this.raycaster.setFromCamera(ndc, this.camera);
+      const hit = this.raycaster.intersectObject(surface.mesh, false)[0];
+      const face = hit ? hit.faceIndex : null;
+      return {
+        level, rgb: [pixel[0], pixel[1], pixel[2]], face, colour: hit ? Array.from(colours.subarray(3 * face, 3 * face + 3)) : null,
+      };
+    });
   }
 
   api() {
     return {
-      version: 1,
+      version: 2,
       firstFrameMs: this.firstFrameMs,
       originalFaces: this.data.faces,
       displayFaces: this.data.display_faces,
       decimated: this.data.decimated,
+      interactionFaces: this.data.interaction ? this.data.interaction.faces : null,
+      restMs: REST_MS,
+      // The last frame drawn: { level: 'interaction' | 'full', triangles
+      // (three.js's count of what it drew), at, sinceChange, ms when timed }.
+      lastFrame: () => (this.lastFrame ? { ...this.lastFrame } : null),
+      // The last frames drawn (up to 200), oldest first, as lastFrame.
+      recentFrames: () => this.recent.map((f) => ({ ...f })),
+      // Each frame rendered to completion and timed (on), the frames so timed (off).
+      setTiming: (on) => {
+        this.timing = on;
+        const frames = this.frames;
+        this.frames = [];
+        return frames;
+      },
+      whenRested: () => this.whenRested(),
       cameraPose: () => this.cameraPose(),
       lookThrough: (i) => this.lookThrough(i),
       frameRegion: (i) => this.frameRegion(i),
       overview: () => { this.overview(); this.renderNow(); return this.cameraPose(); },
       pickAt: (x, y) => this.pickAt(x, y),
       lastPicked: () => this.picked,
-      orbitFrames: (n, degrees) => this.orbitFrames(n, degrees),
+      orbitFrames: (n, degrees, options) => this.orbitFrames(n, degrees, options),
+      drawnAt: (points) => this.drawnAt(points),
+      toggle: (what, on) => this.toggle(what, on),
+      internals: () => this,  // bench/report/profile.cjs only
     };
   }
 }
