@@ -19,10 +19,12 @@ JOBS=${MESHNBV_JOBS:-$(nproc)}
 # - cli/loop: COLMAP (not instrumented) on a synthetic loop; the mesher and
 #   the loop's own code run under the sanitizers in
 #   core/EvalLoop.TinySyntheticLoopEndToEnd and core/EvalMesher.*;
+# - cli/loop_dense: the same with the dense backend, whose code runs under
+#   the sanitizers in core/DenseStereo.* and core/DensePoints.*;
 # - the ground-truth quality tests (PriFindsDegradation, PriQuality,
 #   QualityIndex): 1280x960 renders and PRI on tens of thousands of faces,
 #   the same code as core/Pri.* and core/PriOffset.* on small scenes.
-EXCLUDE=${MESHNBV_ASAN_EXCLUDE-'^(options/front_ends|cli/loop)$|PriFindsDegradation|PriQuality\.|QualityIndex'}
+EXCLUDE=${MESHNBV_ASAN_EXCLUDE-'^(options/front_ends|cli/loop|cli/loop_dense)$|PriFindsDegradation|PriQuality\.|QualityIndex'}
 # cli/extreme_options runs every numeric flag with each of its values; here
 # with the values that reach different code (negative, zero, the smallest
 # double, beyond int and int64, huge, NaN, infinite): 8 of its 10.

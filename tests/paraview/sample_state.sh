@@ -7,7 +7,7 @@ set -euo pipefail
 PLUGIN=$1 WORK=$2
 REPO=$(cd "$(dirname "$0")/../.." && pwd)
 rm -rf "$WORK" && mkdir -p "$WORK"
-MESHNBV_PARAVIEW_PLUGIN=$PLUGIN xvfb-run -a -s "-screen 0 1280x1024x24" \
+MESHNBV_PARAVIEW_PLUGIN=$PLUGIN "$REPO/tests/support/with_xvfb.sh" 1280x1024x24 \
   "$REPO/plugins/paraview/tools/pvpython" "$REPO/sample_projects/paraview/meshnbv_sample.py" \
   --screenshot "$WORK/sample.png" --state "$WORK/sample.pvsm"
 grep -q 'type="MeshNBVSceneReader"' "$WORK/sample.pvsm" || { echo "FAIL: no MeshNBV reader in the state"; exit 1; }
