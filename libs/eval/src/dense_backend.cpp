@@ -245,6 +245,8 @@ std::pair<double, double> disparity_range(const PairGeometry& g, const PinholeCa
 // slightly different range reuses the cached map) and bounded.
 void sgbm_range(double lo, double hi, int* min_disparity, int* num_disparities) {
   const int kMax = 512;
+  if (!(lo > -1e6 && hi < 1e6))
+    throw Error("the depth range gives disparities beyond a million pixels (a degenerate pair)");
   int mn = int(std::floor(lo)) - 2;
   mn = int(std::floor(mn / 8.0)) * 8;
   int count = int(std::ceil(hi)) + 2 - mn;
