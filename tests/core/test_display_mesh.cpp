@@ -179,3 +179,54 @@ TEST(DisplayMesh, FacesOpenMeshCannotHoldAreKept) {
 TEST(DisplayMesh, ZeroBudgetIsRefused) {
   EXPECT_THROW(display_mesh(sphere(10, 10), 0), Error);
 }
+
+// The interaction mesh: the display mesh decimated again, its maps composed
+// from the original faces, its vertices display vertices, its values
+// area-weighted over the original faces.
+TEST(DisplayMesh, CoarseCopyComposesTheMaps) {
+  const TriangleMesh m = sphere(100, 160);  // 31,680 faces
+  const DisplayMesh d = display_mesh(m, 8000);
+  const CoarseDisplayMesh c = coarse_display_mesh(d, 1500);
+  ASSERT_TRUE(c.mesh.decimated);
+  EXPECT_LE(c.mesh.mesh.num_faces(), 1500u);
+  ASSERT_EQ(c.coarse_face.size(), d.mesh.num_faces());
+  ASSERT_EQ(c.mesh.display_face.size(), m.num_faces());
+  for (std::size_t f = 0; f < m.num_faces(); ++f)
+    ASSERT_EQ(c.mesh.display_face[f], c.coarse_face[std::size_t(d.display_face[f])]) << "face " << f;
+  ASSERT_EQ(c.mesh.member_begin.back(), m.num_faces());
+  for (std::size_t k = 0; k + 1 < c.mesh.member_begin.size(); ++k)
+    for (std::uint32_t i = c.mesh.member_begin[k]; i < c.mesh.member_begin[k + 1]; ++i)
+      ASSERT_EQ(c.mesh.display_face[c.mesh.members[i]], int(k));
+  ASSERT_EQ(c.mesh.source_vertex.size(), c.mesh.mesh.vertices.size());
+  for (std::size_t v = 0; v < c.mesh.mesh.vertices.size(); ++v) {
+    const int s = c.mesh.source_vertex[v];
+    ASSERT_GE(s, 0);
+    ASSERT_LT(std::size_t(s), d.mesh.vertices.size());
+    EXPECT_EQ(c.mesh.mesh.vertices[v], d.mesh.vertices[std::size_t(s)]);
+  }
+  // Values: the area-weighted PRI of the original faces each coarse face stands for.
+  const PriResult pri = two_sided_pri(m);
+  const DisplayPri shown = display_pri(c.mesh, m, pri, 0.01);
+  for (std::size_t k = 0; k + 1 < c.mesh.member_begin.size(); ++k) {
+    double sum = 0, area = 0, all = 0;
+    for (std::uint32_t i = c.mesh.member_begin[k]; i < c.mesh.member_begin[k + 1]; ++i) {
+      const std::uint32_t f = c.mesh.members[i];
+      const double a = m.face_area(f);
+      all += a;
+      if (std::isnan(pri.pri[f])) continue;
+      sum += a * pri.pri[f];
+      area += a;
+    }
+    if (area < 0.5 * all)
+      EXPECT_TRUE(std::isnan(shown.pri[k])) << "coarse face " << k;
+    else
+      EXPECT_NEAR(shown.pri[k], sum / area, 1e-4) << "coarse face " << k;
+  }
+  // At or below the budget: the display mesh itself, face for face (still
+  // "decimated": it stands for the original faces as the display mesh does).
+  const CoarseDisplayMesh same = coarse_display_mesh(d, d.mesh.num_faces());
+  EXPECT_EQ(same.mesh.mesh.faces, d.mesh.faces);
+  EXPECT_EQ(same.mesh.display_face, d.display_face);
+  for (std::size_t k = 0; k < same.coarse_face.size(); ++k) ASSERT_EQ(same.coarse_face[k], int(k));
+  EXPECT_THROW(coarse_display_mesh(d, 0), Error);
+}
