@@ -11,6 +11,7 @@
 
 #include "commands.h"
 #include "meshnbv/error.h"
+#include "meshnbv/eval/experiment.h"
 #include "meshnbv/eval/loop.h"
 #include "meshnbv/io/file_util.h"
 #include "meshnbv/io/mesh_io.h"
@@ -56,6 +57,7 @@ struct LoopArgs {
   std::string bootstrap_views, thresholds, percentiles = "80,90,99", mesher = "delaunay", backend = "sparse",
                                            labelling = "graphcut", facet_support = "any";
   eval::LoopOptions options;
+  int bootstraps = 1;
   bool overwrite = false, quiet = false;
 };
 
@@ -75,6 +77,12 @@ void add_selection_options(CLI::App* cmd, LoopArgs* a) {
       ->capture_default_str();
   cmd->add_option("--bootstrap-views", a->bootstrap_views,
                   "Their indices, comma-separated (default: view 0 and its nearest neighbours)");
+  cmd->add_option("--bootstraps", a->bootstraps,
+                  "Run the loop this many times, from starting sets spread over the dataset (each "
+                  "centred on the view farthest in direction from the centres so far), into "
+                  "<out>/bootstrap_<b>/; <out>/bootstraps.csv holds each metric's mean and 95% "
+                  "confidence interval per view count")
+      ->capture_default_str();
   cmd->add_option("--view-budget", a->options.max_views,
                   "Stop when the reconstruction has this many views (0 = all)")
       ->capture_default_str();
@@ -213,6 +221,10 @@ void finish_loop_options(LoopArgs* a) {
   o.backend = eval::parse_backend(a->backend);
   o.delaunay.labelling = eval::parse_labelling(a->labelling);
   o.delaunay.facet_support = eval::parse_facet_support(a->facet_support);
+  check_option(a->bootstraps >= 1 && a->bootstraps <= 1000, "--bootstraps", "in [1, 1000]", a->bootstraps);
+  if (a->bootstraps > 1 && !a->bootstrap_views.empty())
+    throw Error("--bootstrap-views names one starting set: it cannot be combined with --bootstraps " +
+                std::to_string(a->bootstraps));
   if (!a->bootstrap_views.empty()) {
     o.bootstrap_views.clear();
     for (double x : parse_numbers(a->bootstrap_views, "--bootstrap-views")) {
@@ -240,13 +252,20 @@ void run_loop_command(const LoopArgs& a) {
   io::check_can_write_folder(a.out);
   if (!a.cache.empty()) io::check_can_write_folder(a.cache);
   std::error_code ec;
-  if (fs::exists(fs::path(a.out) / "loop.json", ec) && !a.overwrite)
+  if ((fs::exists(fs::path(a.out) / "loop.json", ec) || fs::exists(fs::path(a.out) / "bootstraps.json", ec)) &&
+      !a.overwrite)
     throw Error("output folder holds results of a loop; pass --overwrite to replace them", a.out);
   if (!eval::colmap_available(o.colmap.executable))
     throw Error("COLMAP not found ('" + o.colmap.executable +
                 " help' failed): install Debian's colmap package or pass --colmap");
   // Replacing results: what an earlier run left must not mix with the new ones.
   for (const char* sub : {"meshes", "images", "work"}) fs::remove_all(fs::path(a.out) / sub);
+  for (const char* file : {"loop.json", "steps.csv", "bootstraps.json", "bootstraps.csv"})
+    fs::remove(fs::path(a.out) / file, ec);
+  if (fs::is_directory(a.out, ec))
+    for (const auto& entry : fs::directory_iterator(a.out))
+      if (entry.is_directory() && entry.path().filename().string().rfind("bootstrap_", 0) == 0)
+        fs::remove_all(entry.path());
   fs::create_directories(a.out);
   const std::string cache = a.cache.empty() ? (fs::path(a.out) / "cache").string() : a.cache;
   ProgressBar bar(a.quiet);
@@ -256,18 +275,39 @@ void run_loop_command(const LoopArgs& a) {
     std::cout << "dataset: " << dataset.views.size() << " views" << (dataset.synthetic ? " (synthetic)" : "")
               << "; strategy " << a.strategy << "\n";
   ProgressBar loop_bar(true);
-  const eval::LoopResult r = eval::run_loop(
-      dataset, o, loop_bar.callback(), [&](const eval::StepRecord& s) {
-        std::cout << "step " << s.step << ": " << s.views.size() << " views";
-        if (!s.added.empty()) std::cout << " (+" << s.added << ", " << s.chosen_by << ")";
-        std::cout << ", " << s.points << " points, " << s.faces << " faces; "
-                  << join_metrics(s.metrics);
-        if (!s.failure.empty()) std::cout << "; FAILED: " << s.failure;
-        std::cout << "; " << std::setprecision(3)
-                  << s.seconds_reconstruct + s.seconds_pri + s.seconds_choose + s.seconds_evaluate
-                  << " s\n"
-                  << std::flush;
-      });
+  auto print_step = [&](int run, const eval::StepRecord& s) {
+    if (run > 0) std::cout << "run " << run << "/" << a.bootstraps << " ";
+    std::cout << "step " << s.step << ": " << s.views.size() << " views";
+    if (!s.added.empty()) std::cout << " (+" << s.added << ", " << s.chosen_by << ")";
+    std::cout << ", " << s.points << " points, " << s.faces << " faces; " << join_metrics(s.metrics);
+    if (!s.failure.empty()) std::cout << "; FAILED: " << s.failure;
+    std::cout << "; " << std::setprecision(3)
+              << s.seconds_reconstruct + s.seconds_pri + s.seconds_choose + s.seconds_evaluate << " s\n"
+              << std::flush;
+  };
+  if (a.bootstraps > 1) {
+    const auto sets = eval::spread_bootstraps(dataset.views, a.bootstraps, o.bootstrap);
+    if (!a.quiet) {
+      std::cout << a.bootstraps << " starting sets:";
+      for (const auto& set : sets) {
+        std::cout << " {";
+        for (std::size_t k = 0; k < set.size(); ++k) std::cout << (k ? "," : "") << set[k];
+        std::cout << "}";
+      }
+      std::cout << "\n";
+    }
+    const eval::BootstrapRuns runs = eval::run_bootstraps(dataset, o, sets, loop_bar.callback(), print_step);
+    double seconds = 0;
+    for (const auto& r : runs.runs) seconds += r.seconds;
+    std::cout << "reference: " << runs.runs.front().reference << "\n";
+    std::cout << "results: " << (fs::path(a.out) / "bootstraps.csv").string() << ", "
+              << (fs::path(a.out) / "bootstraps.json").string() << ", "
+              << (fs::path(a.out) / "bootstrap_<b>").string() << "/ (" << std::setprecision(4) << seconds
+              << " s)\n";
+    return;
+  }
+  const eval::LoopResult r =
+      eval::run_loop(dataset, o, loop_bar.callback(), [&](const eval::StepRecord& s) { print_step(0, s); });
   std::cout << "reference: " << r.reference << "\n";
   std::cout << "results: " << (fs::path(a.out) / "steps.csv").string() << ", "
             << (fs::path(a.out) / "loop.json").string() << " (" << std::setprecision(4) << r.seconds
@@ -275,8 +315,7 @@ void run_loop_command(const LoopArgs& a) {
 }
 
 struct EvalArgs {
-  std::string recon, reference, json, thresholds = "0.00075,0.00125,0.00175",
-                                      percentiles = "80,90,99";
+  std::string recon, reference, json, thresholds = "0.00075,0.00125,0.00175", percentiles = "80,90,99";
   eval::EvaluationOptions options;
   bool overwrite = false;
 };

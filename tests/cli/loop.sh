@@ -78,6 +78,53 @@ for a, b in zip(inc["steps"][1:], full["steps"][1:]):
     assert b["pri_faces"]["recomputed"] == b["pri_faces"]["total"] > 0, b["pri_faces"]
     assert 0 <= a["pri_faces"]["recomputed"] <= a["pri_faces"]["total"], a["pri_faces"]
 PY
+# --bootstraps: uniform from 3 starting sets spread over the ring (centres
+# 0, 6 and 3 of 12 views), each run in its folder; bootstraps.csv holds the
+# mean and 95% interval of each metric per view count, checked here against
+# the runs' own steps.csv and the t critical value of 2 degrees of freedom
+# in closed form, (2p - 1) / sqrt(2 p (1 - p)) at p = 0.975.
+"$MESHNBV" loop "$TMP/synth" --strategy uniform --view-budget 4 --bootstraps 3 --out "$TMP/boot" \
+  --cache "$TMP/cache" --save-meshes none >"$TMP/boot.txt" 2>&1 || fail "loop --bootstraps: $(tail -3 "$TMP/boot.txt")"
+grep -q "^3 starting sets: {0,1,11} {5,6,7} {2,3,4}" "$TMP/boot.txt" || fail "starting sets printed: $(head -5 "$TMP/boot.txt")"
+grep -q "^run 3/3 step 1: 4 views" "$TMP/boot.txt" || fail "runs printed: $(cat "$TMP/boot.txt")"
+/usr/bin/python3 - "$TMP/boot" <<'PY' || fail "loop --bootstraps results"
+import csv, json, math, os, statistics, sys
+d = sys.argv[1]
+j = json.load(open(d + "/bootstraps.json"))
+assert j["format"] == "meshnbv-loop-bootstraps" and j["strategy"] == "uniform"
+assert [r["bootstrap_views"] for r in j["runs"]] == [[0, 1, 11], [5, 6, 7], [2, 3, 4]], j["runs"]
+assert all(r["done"] for r in j["runs"])
+p = 0.975
+assert abs(j["t_critical"]["3"] - (2 * p - 1) / math.sqrt(2 * p * (1 - p))) < 1e-9, j["t_critical"]
+runs = []
+for r in j["runs"]:
+    loop = json.load(open(os.path.join(d, r["folder"], "loop.json")))
+    assert sorted(loop["steps"][0]["views"]) == ["view_%03d" % i for i in r["bootstrap_views"]], loop["steps"][0]
+
+    runs.append(list(csv.DictReader(open(os.path.join(d, r["folder"], "steps.csv")))))
+rows = list(csv.DictReader(open(d + "/bootstraps.csv")))
+assert rows and set(r["num_views"] for r in rows) == {"3", "4"}, rows
+checked = 0
+for row in rows:
+    if not row["metric"].startswith("completeness_"):
+        continue
+    x = [float(s[row["metric"]]) for run in runs for s in run if s["num_views"] == row["num_views"]]
+    assert int(row["runs"]) == len(x) == 3, row
+    m = statistics.fmean(x)
+    half = j["t_critical"]["3"] * statistics.stdev(x) / math.sqrt(3)
+    assert abs(float(row["mean"]) - m) < 1e-7, (row, x)
+    assert abs(float(row["ci_low"]) - (m - half)) < 1e-6 and abs(float(row["ci_high"]) - (m + half)) < 1e-6, (row, x)
+    assert float(row["min"]) == min(x) and float(row["max"]) == max(x)
+    checked += 1
+assert checked == 6, checked  # 3 thresholds x 2 view counts
+for name, a in j["curve_areas"].items():
+    assert a["runs"] == 3 and a["ci_low"] <= a["mean"] <= a["ci_high"], (name, a)
+PY
+expect_error "cannot be combined with --bootstraps" "$MESHNBV" loop "$TMP/synth" --bootstraps 2 \
+  --bootstrap-views 0,1,2 --out "$TMP/b2" --cache "$TMP/cache"
+expect_error "13 starting sets asked of 12 views" "$MESHNBV" loop "$TMP/synth" --bootstraps 13 \
+  --out "$TMP/b3" --cache "$TMP/cache"
+expect_error "--overwrite" "$MESHNBV" loop "$TMP/synth" --strategy uniform --bootstraps 3 --out "$TMP/boot" --cache "$TMP/cache"
 # The cache is shared: features and matches were computed once.
 [ "$(grep -c '^\$ .*feature_extractor' "$TMP/cache/colmap/colmap.log")" -eq 1 ] || fail "features computed once"
 expect_error "--overwrite" "$MESHNBV" loop "$TMP/synth" --strategy uniform --view-budget 5 --out "$TMP/uniform" --cache "$TMP/cache"

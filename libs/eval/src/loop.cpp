@@ -1,5 +1,6 @@
 // The incremental view-selection loop of the paper's experiment.
 #include "meshnbv/eval/loop.h"
+#include "meshnbv/eval/experiment.h"
 #include "meshnbv/enum_names.h"
 
 #include <algorithm>
@@ -113,31 +114,6 @@ std::string two_digits(int k) {
   return b;
 }
 
-std::string number(double x) {
-  if (!std::isfinite(x)) return "nan";
-  std::ostringstream ss;
-  ss << std::setprecision(8) << x;
-  return ss.str();
-}
-
-std::string threshold_name(double t) {
-  std::ostringstream ss;
-  ss << std::setprecision(6) << t;
-  return ss.str();
-}
-
-std::vector<int> default_bootstrap(const std::vector<View>& views, int count) {
-  std::vector<std::pair<double, int>> by_distance;
-  const Vec3 c0 = views[0].camera.center();
-  for (std::size_t i = 1; i < views.size(); ++i)
-    by_distance.emplace_back((views[i].camera.center() - c0).norm(), int(i));
-  std::stable_sort(by_distance.begin(), by_distance.end(),
-                   [](const auto& a, const auto& b) { return a.first < b.first; });
-  std::vector<int> out{0};
-  for (int k = 0; k + 1 < count; ++k) out.push_back(by_distance[std::size_t(k)].second);
-  std::sort(out.begin(), out.end());
-  return out;
-}
 
 nlohmann::json step_json(const StepRecord& s) {
   nlohmann::json j;
@@ -150,8 +126,8 @@ nlohmann::json step_json(const StepRecord& s) {
   j["faces"] = s.faces;
   nlohmann::json acc = nlohmann::json::object(), comp = nlohmann::json::object();
   for (const auto& [p, v] : s.metrics.accuracy)
-    acc[threshold_name(p)] = std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
-  for (const auto& [t, v] : s.metrics.completeness) comp[threshold_name(t)] = v;
+    acc[csv_label(p)] = std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
+  for (const auto& [t, v] : s.metrics.completeness) comp[csv_label(t)] = v;
   j["accuracy"] = acc;
   j["completeness"] = comp;
   j["mean_accuracy"] = std::isfinite(s.metrics.mean_accuracy) ? nlohmann::json(s.metrics.mean_accuracy)
@@ -358,23 +334,36 @@ Image snapshot(const TriangleMesh& mesh, const PinholeCamera& viewer, double zoo
   return render(in, cam, o);
 }
 
+std::string csv_number(double x) {
+  if (!std::isfinite(x)) return "nan";
+  std::ostringstream ss;
+  ss << std::setprecision(8) << x;
+  return ss.str();
+}
+
+std::string csv_label(double t) {
+  std::ostringstream ss;
+  ss << std::setprecision(6) << t;
+  return ss.str();
+}
+
 std::string steps_csv(const LoopResult& result) {
   std::ostringstream ss;
   ss << "step,num_views,added,chosen_by,points,faces";
   if (!result.steps.empty()) {
-    for (const auto& [p, v] : result.steps[0].metrics.accuracy) ss << ",accuracy_" << threshold_name(p);
+    for (const auto& [p, v] : result.steps[0].metrics.accuracy) ss << ",accuracy_" << csv_label(p);
     for (const auto& [t, v] : result.steps[0].metrics.completeness)
-      ss << ",completeness_" << threshold_name(t);
+      ss << ",completeness_" << csv_label(t);
   }
   ss << ",mean_accuracy,seconds_reconstruct,seconds_pri,seconds_choose,seconds_evaluate\n";
   for (const StepRecord& s : result.steps) {
     ss << s.step << "," << s.views.size() << "," << s.added << "," << s.chosen_by << "," << s.points
        << "," << s.faces;
-    for (const auto& [p, v] : s.metrics.accuracy) ss << "," << number(v);
-    for (const auto& [t, v] : s.metrics.completeness) ss << "," << number(v);
-    ss << "," << number(s.metrics.mean_accuracy) << "," << number(s.seconds_reconstruct) << ","
-       << number(s.seconds_pri) << "," << number(s.seconds_choose) << ","
-       << number(s.seconds_evaluate) << "\n";
+    for (const auto& [p, v] : s.metrics.accuracy) ss << "," << csv_number(v);
+    for (const auto& [t, v] : s.metrics.completeness) ss << "," << csv_number(v);
+    ss << "," << csv_number(s.metrics.mean_accuracy) << "," << csv_number(s.seconds_reconstruct) << ","
+       << csv_number(s.seconds_pri) << "," << csv_number(s.seconds_choose) << ","
+       << csv_number(s.seconds_evaluate) << "\n";
   }
   return ss.str();
 }
@@ -463,7 +452,7 @@ struct Selection {
 Selection bootstrap_selection(const Dataset& dataset, const LoopOptions& options) {
   const std::size_t n = dataset.views.size();
   Selection sel;
-  sel.selected = options.bootstrap_views.empty() ? default_bootstrap(dataset.views, options.bootstrap)
+  sel.selected = options.bootstrap_views.empty() ? spread_bootstraps(dataset.views, 1, options.bootstrap)[0]
                                                  : options.bootstrap_views;
   for (int i : sel.selected)
     if (i < 0 || std::size_t(i) >= n)

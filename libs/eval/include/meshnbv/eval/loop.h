@@ -162,6 +162,12 @@ TriangleMesh poisson_mesh(const std::vector<SparsePoint>& points, const std::vec
 // face's front is seen, red where its back is (inverted or seen from inside).
 Image snapshot(const TriangleMesh& mesh, const PinholeCamera& viewer, double zoom_out = 1.3);
 
+// How steps.csv writes a value (8 significant digits, "nan" when not
+// finite) and names a percentile or threshold in its columns
+// (accuracy_<label>, completeness_<label>; 6 significant digits).
+std::string csv_number(double x);
+std::string csv_label(double t);
+
 // The per-step table as CSV (one row per step).
 std::string steps_csv(const LoopResult& result);
 
