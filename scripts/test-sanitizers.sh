@@ -29,6 +29,9 @@ EXCLUDE=${MESHNBV_ASAN_EXCLUDE-'^(options/front_ends|cli/loop|cli/loop_dense)$|P
 # with the values that reach different code (negative, zero, the smallest
 # double, beyond int and int64, huge, NaN, infinite): 8 of its 10.
 export MESHNBV_EXTREME_VALUES=${MESHNBV_EXTREME_VALUES-"-1 0 1e-308 2147483648 99999999999999999999 1e308 nan -inf"}
+# and `run` with only its own flags (those of pri and suggest are varied
+# with pri and suggest, through the same tables and checks).
+export MESHNBV_EXTREME_RUN_OWN_FLAGS=${MESHNBV_EXTREME_RUN_OWN_FLAGS-1}
 
 rm -rf "$BUILD"
 mkdir -p "$BUILD"
