@@ -15,6 +15,10 @@ scenes); its area is the mean over the view counts from the bootstrap to
 the budget, in points. Baselines: uniform, random, coverage; the best is
 the one with the largest mean area. Intervals: Student t over the starting
 sets, with the critical values `meshnbv loop` wrote (bootstraps.json).
+Accuracies (distances) and their ratios are summarised by the geometric
+mean and the interval of the mean log: their spread is multiplicative
+(one failed start can be 20x worse), and a distance's interval must stay
+above zero.
 
 Writes RESULTS_DIR/<dataset>/{curves.png, paired.png, table.md} and
 RESULTS_DIR/{summary.json, results.md}.
@@ -98,6 +102,14 @@ def interval(values, t_table):
     return (len(x), m, m - half, m + half)
 
 
+def log_interval(values, t_table):
+    """interval() of the logs, back as (n, geometric mean, low, high): for
+    distances and ratios, whose spread is multiplicative."""
+    logs = [math.log(v) if v is not None and math.isfinite(v) and v > 0 else None for v in values]
+    n, m, lo, hi = interval(logs, t_table)
+    return (n, math.exp(m), math.exp(lo), math.exp(hi)) if n else (0, float("nan"), float("nan"), float("nan"))
+
+
 def area(curve, views):
     return statistics.fmean([curve[v] for v in views]) if all(v in curve for v in views) else float("nan")
 
@@ -141,9 +153,10 @@ def analyse(dataset, ddir, runs):
             "area": interval([100 * a if a is not None else None for a in areas], t_table),
             "area_per_set": [100 * a if a is not None else None for a in areas],
             "final_completeness": interval([100 * c[last] if c else None for c in comp[s]], t_table),
-            "final_accuracy": interval([a[last] if a else None for a in acc[s]], t_table),
+            "final_accuracy": log_interval([a[last] if a else None for a in acc[s]], t_table),
             "curve": {v: interval([100 * c[v] if c and v in c else None for c in comp[s]], t_table) for v in views},
-            "accuracy_curve": {v: interval([a[v] if a and v in a else None for a in acc[s]], t_table) for v in views},
+            "accuracy_curve": {v: log_interval([a[v] if a and v in a else None for a in acc[s]], t_table)
+                               for v in views},
         }
     baselines = [s for s in BASELINES if s in strategies]
     best = max(baselines, key=lambda s: result["strategies"][s]["area"][1]) if baselines else None
@@ -157,13 +170,13 @@ def analyse(dataset, ddir, runs):
                       for a, b in zip(comp[s], comp[best])]
             d_final = [None if (a is None or b is None) else 100 * (a[last] - b[last])
                        for a, b in zip(comp[s], comp[best])]
-            r_acc = [None if (a is None or b is None or not b[last]) else a[last] / b[last]
-                     for a, b in zip(acc[s], acc[best])]
+            r_acc = [None if (a is None or b is None or not (a[last] > 0 and b[last] > 0))
+                     else a[last] / b[last] for a, b in zip(acc[s], acc[best])]
             d_curve = {v: interval([None if (a is None or b is None) else 100 * (a[v] - b[v])
                                     for a, b in zip(comp[s], comp[best])], t_table) for v in views}
             paired[s] = {"area_difference": interval(d_area, t_table),
                          "final_completeness_difference": interval(d_final, t_table),
-                         "final_accuracy_ratio": interval(r_acc, t_table),
+                         "final_accuracy_ratio": log_interval(r_acc, t_table),
                          "curve_difference": d_curve}
     result["paired_to_best_baseline"] = paired
 
@@ -180,10 +193,10 @@ def analyse(dataset, ddir, runs):
         axes[1].fill_between(views, [scale * a[v][2] for v in views], [scale * a[v][3] for v in views],
                              alpha=0.18, color=col)
     thr = float(primary)
+    axes[1].set_title("90%% accuracy (%s; geometric mean, 95%% interval; lower is better)" % unit, fontsize=9)
     axes[0].set_title("completeness at %s %s (mean, 95%% interval over %d starting sets)"
                       % (("%.2f" % (thr * scale)), unit, n_sets), fontsize=9)
     axes[0].set_ylabel("%")
-    axes[1].set_title("90%% accuracy (%s; lower is better)" % unit, fontsize=9)
     axes[1].set_yscale("log")
     for ax in axes:
         ax.set_xlabel("views")
@@ -225,7 +238,8 @@ def analyse(dataset, ddir, runs):
         for kind, keys in (("accuracy", pkeys), ("completeness", tkeys)):
             for k in keys:
                 curves = per_set_curves(runs[s], kind, k)
-                rows[(kind, k)] = interval([c[last] if c and last in c else None for c in curves], t_table)
+                f = log_interval if kind == "accuracy" else interval
+                rows[(kind, k)] = f([c[last] if c and last in c else None for c in curves], t_table)
         per_last[s] = rows
     digits = 2 if real else 3
     lines = ["| | Thresholds | " + " | ".join(LABELS.get(s, s) for s in strategies) + " |",
@@ -276,7 +290,8 @@ def main():
                 results.append(analyse(dataset, ddir, runs))
     md = ["# The paired experiment", "",
           "Written by bench/eval/experiment.py from the runs of bench/eval/experiment.sh beside it. "
-          "Cells: mean [95% interval] over the starting sets; random is the mean of its seeds per set.", ""]
+          "Cells: mean [95% interval] over the starting sets (accuracies and their ratios: geometric mean "
+          "and the interval of the mean log); random is the mean of its seeds per set.", ""]
     for r in results:
         md += ["## %s" % r["dataset"], "",
                "Starting sets: %s. Best baseline (largest mean area): %s." %
