@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # with_xvfb.sh SIZE COMMAND...: runs COMMAND under an Xvfb of its own
-# (xvfb_screen.bash: a display chosen from our pid, waited for until its
-# socket exists), stopped afterwards. Instead of `xvfb-run -a`, whose
+# (xvfb_screen.bash: a display Xvfb picks and reports once it accepts
+# connections), stopped afterwards. Instead of `xvfb-run -a`, whose
 # display :99 can still belong to the server of the run before it.
 set -euo pipefail
 size=$1

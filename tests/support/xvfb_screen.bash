@@ -1,22 +1,36 @@
-# Sourced by the GUI screenshot scripts (plugins/*/tools/gui_screenshot.sh).
+# Sourced by the GUI screenshot scripts (plugins/*/tools/gui_screenshot.sh)
+# and tests/support/with_xvfb.sh.
 #
 # start_xvfb_screen WORK SIZE: starts Xvfb on a free display with its screen
 # kept as a file (WORK/fb/Xvfb_screen0, which xwd_to_png.py converts),
 # exports DISPLAY and appends the server's pid to the caller's `pids`.
+# Xvfb picks the display itself and writes its number to a file
+# (-displayfd) only once it accepts connections: no race with a socket
+# left by an earlier server, nor with another test starting one.
 start_xvfb_screen() {
-  local work=$1 size=$2 display=$((300 + $$ % 600))
-  while [ -e "/tmp/.X$display-lock" ]; do display=$((display + 1)); done
+  local work=$1 size=$2
   mkdir -p "$work/fb"
-  Xvfb ":$display" -screen 0 "$size" -fbdir "$work/fb" > "$work/xvfb.log" 2>&1 &
+  : >"$work/display"
+  # An authorisation cookie, as xvfb-run gives (ParaView's pvpython cannot
+  # open a display without one). The server takes every cookie of its
+  # -auth file; clients look theirs up by display, added once it is known.
+  local cookie
+  cookie=$(od -An -N16 -tx1 /dev/urandom | tr -d ' \n')
+  XAUTHORITY="$work/Xauthority" xauth -q add :65535 . "$cookie" 2>/dev/null
+  Xvfb -displayfd 3 -auth "$work/Xauthority" -screen 0 "$size" -fbdir "$work/fb" 3>"$work/display" \
+    >"$work/xvfb.log" 2>&1 &
   local server=$!
   pids+=("$server")
-  # Ready when its socket exists (a loaded machine can take seconds).
-  local i
+  # A loaded machine can take seconds.
+  local i display=
   for i in $(seq 300); do
-    [ -S "/tmp/.X11-unix/X$display" ] && break
-    kill -0 "$server" 2>/dev/null || { echo "Xvfb :$display exited:"; cat "$work/xvfb.log"; return 1; }
+    display=$(tr -dc '0-9' <"$work/display")
+    [ -n "$display" ] && [ "$(tail -c 1 "$work/display" | od -An -c | tr -d ' ')" = '\n' ] && break
+    display=
+    kill -0 "$server" 2>/dev/null || { echo "Xvfb exited:"; cat "$work/xvfb.log"; return 1; }
     sleep 0.1
   done
-  [ -S "/tmp/.X11-unix/X$display" ] || { echo "Xvfb :$display did not start in 30 s"; return 1; }
-  export DISPLAY=":$display"
+  [ -n "$display" ] || { echo "Xvfb did not start in 30 s:"; cat "$work/xvfb.log"; return 1; }
+  XAUTHORITY="$work/Xauthority" xauth -q add ":$display" . "$cookie"
+  export DISPLAY=":$display" XAUTHORITY="$work/Xauthority"
 }
