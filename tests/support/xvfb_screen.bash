@@ -7,6 +7,9 @@
 # Xvfb picks the display itself and writes its number to a file
 # (-displayfd) only once it accepts connections: no race with a socket
 # left by an earlier server, nor with another test starting one.
+# -noreset: an X server resets when its last client disconnects and
+# refuses connections meanwhile; pvpython opens and closes a connection
+# before its render window's, which then failed one run in two here.
 start_xvfb_screen() {
   local work=$1 size=$2
   mkdir -p "$work/fb"
@@ -17,7 +20,7 @@ start_xvfb_screen() {
   local cookie
   cookie=$(od -An -N16 -tx1 /dev/urandom | tr -d ' \n')
   XAUTHORITY="$work/Xauthority" xauth -q add :65535 . "$cookie" 2>/dev/null
-  Xvfb -displayfd 3 -auth "$work/Xauthority" -screen 0 "$size" -fbdir "$work/fb" 3>"$work/display" \
+  Xvfb -displayfd 3 -noreset -auth "$work/Xauthority" -screen 0 "$size" -fbdir "$work/fb" 3>"$work/display" \
     >"$work/xvfb.log" 2>&1 &
   local server=$!
   pids+=("$server")
