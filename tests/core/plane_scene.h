@@ -15,6 +15,11 @@
 
 namespace meshnbv::test {
 
+// The material and the four eyes the plane tests share: a noise texture
+// seen from about 5 m above, from four sides of the centre.
+inline const Material kPlaneNoise = {Pattern::Noise, Vec3(0.7, 0.6, 0.5), Vec3(0.3, 0.3, 0.3), 0.5, 0.45};
+inline const std::vector<Vec3> kPlaneEyes = {{0.5, -1.0, 5.0}, {-1.5, 0.5, 5.0}, {1.5, 1.0, 4.5}, {0.0, 2.0, 5.0}};
+
 struct PlaneSceneOptions {
   double edge = 0.5;         // the generator's edge length (m)
   std::uint64_t texture_seed = 3;

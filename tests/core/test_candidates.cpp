@@ -17,10 +17,10 @@
 #include "test_util.h"
 
 using namespace meshnbv;
+using test::kDeg;
 
 namespace {
 
-constexpr double kDeg = M_PI / 180.0;
 
 // fn(p) for the points of a lattice of spacing 0.1 starting at `from` and
 // below `to`; the starts used here keep every point off the boxes' face

@@ -23,6 +23,7 @@
 #include "test_util.h"
 
 using namespace meshnbv;
+using test::json_round_trip;
 namespace fs = std::filesystem;
 
 namespace {
@@ -245,7 +246,7 @@ std::vector<TestCamera> opencv_cameras() {
           {"OPENCV", 4, 1200, 900, {1010.0, 1012.5, 603.1, 449.2, 0.083, -0.021, -0.0009, 0.0014}}};
 }
 
-void expect_same_camera(const PinholeCamera& a, const PinholeCamera& b) {
+void expect_identical_camera(const PinholeCamera& a, const PinholeCamera& b) {
   const double tol = 1e-12;
   EXPECT_EQ(a.width, b.width);
   EXPECT_EQ(a.height, b.height);
@@ -279,14 +280,6 @@ void expect_projects_like_colmap(const Scene& scene, const TestModel& m, unsigne
   }
 }
 
-Scene json_round_trip(const Scene& scene, const std::string& name) {
-  const std::string path = test::temp_dir(name) + "/scene.json";
-  Scene copy = scene;
-  copy.mesh = {};
-  io::write_json_scene(copy, path, "", true);
-  return io::read_json_scene(path);
-}
-
 }  // namespace
 
 TEST(ColmapModels, OpencvBinaryAndTextGiveTheSameCameras) {
@@ -302,7 +295,7 @@ TEST(ColmapModels, OpencvBinaryAndTextGiveTheSameCameras) {
   ASSERT_EQ(text.views.size(), binary.views.size());
   for (std::size_t i = 0; i < text.views.size(); ++i) {
     EXPECT_EQ(text.views[i].label, binary.views[i].label);
-    expect_same_camera(text.views[i].camera, binary.views[i].camera);
+    expect_identical_camera(text.views[i].camera, binary.views[i].camera);
   }
   // The recorded observations carry 0.25 px of noise: through our cameras
   // they reproject with a median error of about 0.29 px (1.18 sigma).

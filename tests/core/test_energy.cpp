@@ -10,14 +10,14 @@
 #include "test_util.h"
 
 using namespace meshnbv;
+using test::kDeg;
 
 namespace {
-PinholeCamera axis_camera() { return test::centred_camera(500, 640, 480); }
-constexpr double kDeg = M_PI / 180.0;
+PinholeCamera wide_axis_camera() { return test::centred_camera(500, 640, 480); }
 }  // namespace
 
 TEST(EnergyTerms, FocusAtCentreCornerAndOutside) {
-  const PinholeCamera c = axis_camera();
+  const PinholeCamera c = wide_axis_camera();
   EXPECT_NEAR(focus_term(c, Vec3(0, 0, 10), -10), 0.0, 1e-12);
   // Pixel (0, 0): dx = -319.5, dy = -239.5; sx = 640/3, sy = 160.
   const Vec3 corner((0 - 319.5) / 500 * 10, (0 - 239.5) / 500 * 10, 10);

@@ -6,10 +6,19 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <random>
+
+#include <Eigen/Geometry>
 
 #include "meshnbv/mesh.h"
 
 namespace meshnbv::test {
+
+// A rotation drawn uniformly (a normalised Gaussian quaternion).
+inline Mat3 random_rotation(std::mt19937& rng) {
+  std::normal_distribution<double> n;
+  return Eigen::Quaterniond(n(rng), n(rng), n(rng), n(rng)).normalized().toRotationMatrix();
+}
 
 // Distance from p to the triangle (a, b, c): the closest point by the
 // Voronoi regions of the vertices, edges and face (Ericson, Real-Time

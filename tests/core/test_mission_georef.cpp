@@ -14,6 +14,7 @@
 #include "meshnbv/error.h"
 #include "meshnbv/io/exif.h"
 #include "meshnbv/mission/georef.h"
+#include "test_geometry.h"
 #include "test_util.h"
 
 namespace meshnbv::test {
@@ -21,12 +22,6 @@ namespace {
 
 using mission::GeoFrame;
 using mission::Georeference;
-
-Mat3 random_rotation(std::mt19937& rng) {
-  std::normal_distribution<double> n;
-  Eigen::Quaterniond q(n(rng), n(rng), n(rng), n(rng));
-  return q.normalized().toRotationMatrix();
-}
 
 Georeference random_georef(std::mt19937& rng, const char* crs = "EPSG:32632") {
   std::uniform_real_distribution<double> u(0, 1);

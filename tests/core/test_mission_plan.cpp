@@ -14,6 +14,7 @@
 #include "meshnbv/error.h"
 #include "meshnbv/mission/plan.h"
 #include "meshnbv/raycaster.h"
+#include "test_geometry.h"
 #include "test_util.h"
 
 namespace meshnbv::test {
@@ -28,11 +29,6 @@ void add_box(TriangleMesh* m, const Vec3& lo, const Vec3& hi) {
   const int f[12][3] = {{0, 2, 1}, {1, 2, 3}, {4, 5, 6}, {5, 7, 6}, {0, 1, 4}, {1, 5, 4},
                         {2, 6, 3}, {3, 6, 7}, {0, 4, 2}, {2, 4, 6}, {1, 3, 5}, {3, 7, 5}};
   for (const auto& t : f) m->faces.push_back({b + t[0], b + t[1], b + t[2]});
-}
-
-Mat3 random_rotation(std::mt19937& rng) {
-  std::normal_distribution<double> n;
-  return Eigen::Quaterniond(n(rng), n(rng), n(rng), n(rng)).normalized().toRotationMatrix();
 }
 
 bool in_ring(const std::vector<Vec2>& r, const Vec2& p) {

@@ -22,6 +22,7 @@
 #include "test_util.h"
 
 using namespace meshnbv;
+using test::num;
 namespace fs = std::filesystem;
 
 namespace {
@@ -39,13 +40,6 @@ Vec2 vcg_project_top_left(const VcgShot& s, const Vec3& X) {
   const double mx = s.focal_mm * q.x() / q.z(), my = s.focal_mm * q.y() / q.z();
   const double px = mx / s.pixel_mm_x + s.center_x, py = my / s.pixel_mm_y + s.center_y;
   return {px - 0.5, s.height - py - 0.5};
-}
-
-std::string num(double v) {
-  std::ostringstream ss;
-  ss.precision(17);
-  ss << v;
-  return ss.str();
 }
 
 std::string raster_xml(const std::string& label, const VcgShot& s, const std::string& image) {

@@ -13,9 +13,11 @@
 #include "meshnbv/raycaster.h"
 #include "meshnbv/renderer.h"
 #include "meshnbv/synth/generators.h"
+#include "plane_scene.h"
 #include "test_util.h"
 
 using namespace meshnbv;
+using test::kPlaneEyes;
 
 namespace {
 
@@ -52,8 +54,6 @@ PlaneScene make_scene(const std::string& name, const TriangleMesh& truth,
 }
 
 TriangleMesh plane() { return synth::make_ground(Vec3(-2, -2, 0), Vec3(2, 2, 0), 0.5, 0); }
-
-const std::vector<Vec3> kEyes = {{0.5, -1.0, 5.0}, {-1.5, 0.5, 5.0}, {1.5, 1.0, 4.5}, {0.0, 2.0, 5.0}};
 
 int face_at(const TriangleMesh& m, const Vec3& p) {
   int best = -1;
@@ -145,7 +145,7 @@ TEST(PriMeasures, PairSumsOfTooFewViews) {
 }
 
 TEST(Pri, TruthIsConsistentAndAShiftedMeshIsNot) {
-  PlaneScene s = make_scene("shift", plane(), kEyes);
+  PlaneScene s = make_scene("shift", plane(), kPlaneEyes);
   const PriResult truth = compute_pri(s.scene);
   // Raise the reconstruction 10 cm (about 3 px of parallax between views).
   for (auto& v : s.scene.mesh.vertices) v.z() += 0.1;
@@ -176,11 +176,11 @@ TEST(Pri, FaceSeenByOneViewIsUnobserved) {
 TEST(Pri, OccludedFaceLosesTheView) {
   // A box floating 2 m above the plane on the line from camera 0 to the
   // plane's centre hides the central faces from camera 0 only.
-  const Vec3 eye0 = kEyes[0], mid = 0.55 * eye0;
+  const Vec3 eye0 = kPlaneEyes[0], mid = 0.55 * eye0;
   TriangleMesh m = plane();
   m.append(synth::make_box(mid - Vec3(0.4, 0.4, 0.2), mid + Vec3(0.4, 0.4, 0.2), 0.5, 0));
-  PlaneScene open = make_scene("unoccluded", plane(), kEyes);
-  PlaneScene s = make_scene("occluded", m, kEyes);
+  PlaneScene open = make_scene("unoccluded", plane(), kPlaneEyes);
+  PlaneScene s = make_scene("occluded", m, kPlaneEyes);
   const PriResult without = compute_pri(open.scene), with = compute_pri(s.scene);
   const int centre = face_at(s.scene.mesh, Vec3(0.1, -0.1, 0));
   const int far = face_at(s.scene.mesh, Vec3(1.2, 1.2, 0));  // off the box's shadow cone
@@ -190,7 +190,7 @@ TEST(Pri, OccludedFaceLosesTheView) {
 }
 
 TEST(Pri, BackFacingFaceIsUnobserved) {
-  PlaneScene s = make_scene("backface", plane(), kEyes);
+  PlaneScene s = make_scene("backface", plane(), kPlaneEyes);
   // Flip one face: its normal now points away from every camera.
   std::swap(s.scene.mesh.faces[5][1], s.scene.mesh.faces[5][2]);
   const PriResult r = compute_pri(s.scene);
@@ -201,7 +201,7 @@ TEST(Pri, BackFacingFaceIsUnobserved) {
 
 TEST(Pri, FacePartlyOutsideAnImage) {
   // Camera 1 looks away to the side: the plane's edge faces are cut by its border.
-  PlaneScene s = make_scene("partly_outside", plane(), kEyes);
+  PlaneScene s = make_scene("partly_outside", plane(), kPlaneEyes);
   View side = s.scene.views[1];
   side.camera = PinholeCamera::look_at(Vec3(0, 0, 5), Vec3(-3.4, 0, 0), Vec3(0, 1, 0), 180, 180,
                                        99.5, 74.5, 200, 150);
@@ -227,7 +227,7 @@ TEST(Pri, FacePartlyOutsideAnImage) {
 
 TEST(Pri, TexturelessPairsUnderNcc) {
   const std::vector<Material> flat = {{Pattern::Noise, Vec3(0.5, 0.5, 0.5), Vec3(0.5, 0.5, 0.5), 1.0, 0.0}};
-  PlaneScene s = make_scene("textureless", plane(), kEyes, flat);
+  PlaneScene s = make_scene("textureless", plane(), kPlaneEyes, flat);
   PriOptions ncc;
   ncc.measure = Measure::NCC;
   const PriResult r = compute_pri(s.scene, ncc);
@@ -250,7 +250,7 @@ TEST(Pri, TexturelessPairsUnderNcc) {
 }
 
 TEST(Pri, EmptyMeshAndNoImagesAreErrors) {
-  PlaneScene s = make_scene("errors", plane(), kEyes);
+  PlaneScene s = make_scene("errors", plane(), kPlaneEyes);
   Scene empty = s.scene;
   empty.mesh = TriangleMesh();
   MESHNBV_EXPECT_ERROR_CONTAINS(compute_pri(empty), "no faces");
@@ -277,7 +277,7 @@ TEST(Pri, EmptyMeshAndNoImagesAreErrors) {
 }
 
 TEST(Pri, PermutingViewsLeavesPriUnchanged) {
-  PlaneScene s = make_scene("permute", plane(), kEyes);
+  PlaneScene s = make_scene("permute", plane(), kPlaneEyes);
   for (auto& v : s.scene.mesh.vertices) v.z() += 0.05 * std::sin(3 * v.x());  // some error
   const PriResult a = compute_pri(s.scene);
   std::reverse(s.scene.views.begin(), s.scene.views.end());
@@ -292,7 +292,7 @@ TEST(Pri, PermutingViewsLeavesPriUnchanged) {
 }
 
 TEST(Pri, NccIgnoresAffineBrightnessChange) {
-  PlaneScene s = make_scene("affine", plane(), kEyes);
+  PlaneScene s = make_scene("affine", plane(), kPlaneEyes);
   for (auto& v : s.scene.mesh.vertices) v.z() += 0.05 * std::sin(3 * v.x());
   PriOptions ncc;
   ncc.measure = Measure::NCC;
@@ -315,7 +315,7 @@ TEST(Pri, NccIgnoresAffineBrightnessChange) {
 }
 
 TEST(Pri, SameResultForAnyThreadCount) {
-  PlaneScene s = make_scene("threads", plane(), kEyes);
+  PlaneScene s = make_scene("threads", plane(), kPlaneEyes);
   for (auto& v : s.scene.mesh.vertices) v.z() += 0.05 * std::sin(3 * v.y());
   PriOptions one, two;
   one.threads = 1;
@@ -336,7 +336,7 @@ TEST(Pri, MaxViewsKeepsSmallestIncidence) {
   // the angle between +z and the direction to the camera is at most 80
   // degrees (nothing occludes). The views kept are computed here from
   // that, by hand: smallest angle first, ties by larger projected area.
-  PlaneScene s = make_scene("max_views", plane(), kEyes);
+  PlaneScene s = make_scene("max_views", plane(), kPlaneEyes);
   PriOptions o;
   o.max_views_per_face = 2;
   const PriViewSelection sel = select_pri_views(s.scene, o);
@@ -351,7 +351,7 @@ TEST(Pri, MaxViewsKeepsSmallestIncidence) {
       int view;
     };
     std::vector<Seen> seen;
-    for (std::size_t i = 0; i < kEyes.size(); ++i) {
+    for (std::size_t i = 0; i < kPlaneEyes.size(); ++i) {
       const PinholeCamera& c = s.scene.views[i].camera;
       Vec2 px[3];
       bool inside = true;
@@ -361,7 +361,7 @@ TEST(Pri, MaxViewsKeepsSmallestIncidence) {
         inside = inside && x.z() > 0 && px[k].x() >= 0 && px[k].y() >= 0 &&
                  px[k].x() <= c.width - 1 && px[k].y() <= c.height - 1;
       }
-      const double angle = std::acos((kEyes[i] - centroid).normalized().z()) * 180 / M_PI;
+      const double angle = std::acos((kPlaneEyes[i] - centroid).normalized().z()) * 180 / M_PI;
       if (!inside || angle > 80) continue;
       const Vec2 a = px[1] - px[0], b = px[2] - px[0];
       seen.push_back({angle, 0.5 * std::abs(a.x() * b.y() - a.y() * b.x()), int(i)});
@@ -392,7 +392,7 @@ TEST(Pri, MaxViewsKeepsSmallestIncidence) {
 }
 
 TEST(Pri, SamplesPerSideOption) {
-  PlaneScene s = make_scene("samples", plane(), kEyes);
+  PlaneScene s = make_scene("samples", plane(), kPlaneEyes);
   PriOptions o;
   o.samples_per_side = 3;
   const PriResult r = compute_pri(s.scene, o);
@@ -402,7 +402,7 @@ TEST(Pri, SamplesPerSideOption) {
 }
 
 TEST(Pri, CancelStops) {
-  PlaneScene s = make_scene("cancel", plane(), kEyes);
+  PlaneScene s = make_scene("cancel", plane(), kPlaneEyes);
   EXPECT_THROW(compute_pri(s.scene, {}, [](double, const std::string&) { return false; }), Cancelled);
   // Every stage reports and can stop: visibility, the per-face view
   // selection, the sampling and comparison.
@@ -412,7 +412,7 @@ TEST(Pri, CancelStops) {
     return true;
   });
   EXPECT_EQ(stages, (std::vector<std::string>{"visibility", "view selection", "pri"}));
-  for (const std::string& stop : {"view selection", "pri"}) {
+  for (const std::string stop : {"view selection", "pri"}) {
     std::vector<std::string> seen;
     EXPECT_THROW(compute_pri(s.scene, {}, [&](double, const std::string& stage) {
                    seen.push_back(stage);
@@ -455,7 +455,7 @@ TEST(Pri, EdgeMarginKeepsSamplesOffSilhouettes) {
   TriangleMesh m = plane();
   const std::size_t plane_faces = m.num_faces();
   m.append(synth::make_box(Vec3(-0.5, -0.5, 0), Vec3(0.5, 0.5, 1.0), 0.5, 0));
-  const PlaneScene s = make_scene("edge_margin", m, kEyes);
+  const PlaneScene s = make_scene("edge_margin", m, kPlaneEyes);
   PriOptions whole;
   whole.edge_margin = 0;
   const PriResult with = compute_pri(s.scene), without = compute_pri(s.scene, whole);
@@ -488,13 +488,13 @@ TEST(Pri, EdgeMarginKeepsSamplesOffSilhouettes) {
 }
 
 TEST(Pri, ViewSelectionIsComputePrisFirstPhase) {
-  PlaneScene s = make_scene("selection", plane(), kEyes);
+  PlaneScene s = make_scene("selection", plane(), kPlaneEyes);
   PriOptions o;
   o.max_views_per_face = 3;
   const PriViewSelection sel = select_pri_views(s.scene, o);
   const PriResult r = compute_pri(s.scene, o);
   ASSERT_EQ(sel.faces.size(), s.scene.mesh.num_faces());
-  EXPECT_EQ(sel.cameras.size(), kEyes.size());
+  EXPECT_EQ(sel.cameras.size(), kPlaneEyes.size());
   std::size_t seen = 0;
   for (std::size_t f = 0; f < sel.faces.size(); ++f) {
     EXPECT_EQ(int(sel.faces[f].views.size()), r.pri_views[f]) << "face " << f;

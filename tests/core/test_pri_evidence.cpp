@@ -20,13 +20,12 @@
 #include "test_util.h"
 
 using namespace meshnbv;
+using test::kPlaneEyes;
+using test::kPlaneNoise;
 
 namespace {
 
-const Material kNoise = {Pattern::Noise, Vec3(0.7, 0.6, 0.5), Vec3(0.3, 0.3, 0.3), 0.5, 0.45};
 const Material kFlat = {Pattern::Noise, Vec3(0.5, 0.5, 0.5), Vec3(0.5, 0.5, 0.5), 1.0, 0.0};
-const std::vector<Vec3> kFourEyes = {{0.5, -1.0, 5.0}, {-1.5, 0.5, 5.0}, {1.5, 1.0, 4.5}, {0.0, 2.0, 5.0}};
-
 Scene plane_scene(const std::string& name, const Material& material, const std::vector<Vec3>& eyes) {
   return test::plane_scene("pri_evidence_" + name, material, eyes);
 }
@@ -49,7 +48,7 @@ PriOptions with(Measure m, int samples_per_side) {
 // ssd and ncc average every pair of the n views: n (n - 1) / 2; each view
 // reads the whole lattice, (r + 1)(r + 2) / 2 samples.
 TEST(PriEvidence, PairsAndSamplesOfSsdAndNcc) {
-  const Scene s = plane_scene("pairs", kNoise, kFourEyes);
+  const Scene s = plane_scene("pairs", kPlaneNoise, kPlaneEyes);
   for (Measure m : {Measure::SSD, Measure::NCC}) {
     const PriResult r = compute_pri(s, with(m, 3));
     std::size_t four = 0, low = 0;
@@ -70,7 +69,7 @@ TEST(PriEvidence, PairsAndSamplesOfSsdAndNcc) {
 
 // offset compares the n - 1 other views with the reference view.
 TEST(PriEvidence, PairsAndSamplesOfOffset) {
-  const Scene s = plane_scene("offset", kNoise, kFourEyes);
+  const Scene s = plane_scene("offset", kPlaneNoise, kPlaneEyes);
   const PriResult r = compute_pri(s, with(Measure::Offset, 4));
   std::size_t four = 0;
   for (std::size_t f = 0; f < r.pri.size(); ++f) {
@@ -85,7 +84,7 @@ TEST(PriEvidence, PairsAndSamplesOfOffset) {
 // A constant image has no texture: 0 under ssd (the faces are observed, PRI
 // 0), and offset has nothing to compare (textureless, 0 pairs).
 TEST(PriEvidence, ConstantImagesHaveNoTexture) {
-  const Scene s = plane_scene("flat", kFlat, kFourEyes);
+  const Scene s = plane_scene("flat", kFlat, kPlaneEyes);
   const PriResult ssd = compute_pri(s, with(Measure::SSD, 3));
   const PriResult offset = compute_pri(s, with(Measure::Offset, 3));
   std::size_t inner = 0;
@@ -106,7 +105,7 @@ TEST(PriEvidence, ConstantImagesHaveNoTexture) {
 
 // Two cameras: every observed face rests on 2 views and 1 pair.
 TEST(PriEvidence, TwoViewsAreCounted) {
-  const Scene s = plane_scene("two", kNoise, {kFourEyes[0], kFourEyes[1]});
+  const Scene s = plane_scene("two", kPlaneNoise, {kPlaneEyes[0], kPlaneEyes[1]});
   const PriResult r = compute_pri(s, with(Measure::SSD, 3));
   const PriEvidence e = pri_evidence(r);
   EXPECT_GT(e.observed, 50u);
@@ -153,7 +152,7 @@ TEST(PriEvidence, MeasureUnits) {
 // The PLY carries the evidence beside quality and pri_views, reads back
 // exactly, and read_pri_for_mesh still takes the PRI from it.
 TEST(PriEvidence, PlyHoldsTheEvidence) {
-  const Scene s = plane_scene("ply", kNoise, kFourEyes);
+  const Scene s = plane_scene("ply", kPlaneNoise, kPlaneEyes);
   const PriResult r = compute_pri(s, with(Measure::Offset, 3));
   const std::string dir = test::temp_dir("PriEvidence.Ply");
   io::write_ply(mesh_with_pri(s.mesh, r), dir + "/pri.ply");
@@ -177,7 +176,7 @@ TEST(PriEvidence, PlyHoldsTheEvidence) {
 // The JSON summary names the measure and its unit, and its evidence block
 // and worst faces agree with the result.
 TEST(PriEvidence, SummaryJson) {
-  const Scene s = plane_scene("json", kNoise, kFourEyes);
+  const Scene s = plane_scene("json", kPlaneNoise, kPlaneEyes);
   const PriOptions o = with(Measure::Offset, 3);
   const PriResult r = compute_pri(s, o);
   const nlohmann::json j = nlohmann::json::parse(pri_summary_json(r, o, 5));

@@ -13,11 +13,10 @@
 #include "plane_scene.h"
 
 using namespace meshnbv;
+using test::kPlaneEyes;
+using test::kPlaneNoise;
 
 namespace {
-
-const Material kNoise = {Pattern::Noise, Vec3(0.7, 0.6, 0.5), Vec3(0.3, 0.3, 0.3), 0.5, 0.45};
-const std::vector<Vec3> kEyes = {{0.5, -1.0, 5.0}, {-1.5, 0.5, 5.0}, {1.5, 1.0, 4.5}, {0.0, 2.0, 5.0}};
 
 // The views of the true plane z = 0 (faces of 0.25 m), 400x300, f = 360 px.
 Scene rendered_plane() {
@@ -26,7 +25,7 @@ Scene rendered_plane() {
   o.texture_seed = 5;
   o.texture_scale = 0.05;
   o.scale = 2;
-  return test::plane_scene("pri_offset", kNoise, kEyes, o);
+  return test::plane_scene("pri_offset", kPlaneNoise, kPlaneEyes, o);
 }
 
 // The scene's mesh moved by dz along the plane's normal.

@@ -39,9 +39,12 @@ const std::map<std::string, Floor> kFloors = {
     {"local_fortress_bump", {0.46, 0.96, 0.9, 0.26, 0.17}},  // measured 0.497 / 0.987 / 1.0
 };
 
-class QualityIndex : public ::testing::TestWithParam<test::QualityCase> {};
-
 }  // namespace
+
+// Outside the anonymous namespace: in a unity build this file is included
+// into another, and a fixture's base there would be a warning
+// (-Wsubobject-linkage).
+class QualityIndex : public ::testing::TestWithParam<test::QualityCase> {};
 
 TEST_P(QualityIndex, OffsetFindsTheTrueError) {
   const test::QualityCase& c = GetParam();

@@ -28,6 +28,8 @@
 #include "test_util.h"
 
 using namespace meshnbv;
+using test::num;
+using test::json_round_trip;
 namespace fs = std::filesystem;
 
 namespace {
@@ -37,12 +39,6 @@ using ProjectFn = std::function<Vec2(std::size_t view, const Vec3& X)>;
 void write(const fs::path& p, const std::string& text) {
   fs::create_directories(p.parent_path());
   std::ofstream(p) << text;
-}
-
-std::string num(double v) {
-  std::ostringstream s;
-  s << std::setprecision(17) << v;
-  return s.str();
 }
 
 Vec2 radial_tangential(const Vec2& n, double k1, double k2, double k3, double k4, double a,
@@ -78,14 +74,6 @@ void expect_projects_like(const Scene& scene, const ProjectFn& expected, std::si
       EXPECT_NEAR(ours.y(), want.y(), tol) << scene.views[i].label;
     }
   }
-}
-
-Scene json_round_trip(const Scene& scene, const std::string& name) {
-  const std::string path = test::temp_dir(name) + "/scene.json";
-  Scene copy = scene;
-  copy.mesh = {};
-  io::write_json_scene(copy, path, "", true);
-  return io::read_json_scene(path);
 }
 
 // ------------------------------------------------------------- Metashape

@@ -1,8 +1,10 @@
 // Helpers shared by the core tests.
 #pragma once
 
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <sstream>
 #include <string>
 
 #include <unistd.h>
@@ -10,6 +12,7 @@
 #include <gtest/gtest.h>
 
 #include "meshnbv/camera.h"
+#include "meshnbv/io/scene_io.h"
 
 namespace meshnbv::test {
 
@@ -36,6 +39,26 @@ inline std::string temp_dir(const std::string& name) {
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   return dir.string();
+}
+
+inline constexpr double kDeg = M_PI / 180.0;
+
+// A double as text with every digit it has (17 significant), for files
+// the tests write.
+inline std::string num(double v) {
+  std::ostringstream ss;
+  ss.precision(17);
+  ss << v;
+  return ss.str();
+}
+
+// The scene (cameras only) through a JSON scene file and back.
+inline Scene json_round_trip(const Scene& scene, const std::string& name) {
+  const std::string path = temp_dir(name) + "/scene.json";
+  Scene copy = scene;
+  copy.mesh = {};
+  io::write_json_scene(copy, path, "", true);
+  return io::read_json_scene(path);
 }
 
 // The Middlebury templeRing folder, or empty when absent.

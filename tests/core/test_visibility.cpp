@@ -17,9 +17,9 @@ using namespace meshnbv;
 namespace {
 
 // 64 x 48 pixels, f = 64: at depth 2, x = 2 (u - 31.5) / 64 exactly.
-PinholeCamera axis_camera() { return test::centred_camera(64, 64, 48); }
+PinholeCamera small_axis_camera() { return test::centred_camera(64, 64, 48); }
 
-// The point at depth z that projects to pixel (u, v) of axis_camera().
+// The point at depth z that projects to pixel (u, v) of small_axis_camera().
 Vec3 at_pixel(double u, double v, double z) {
   return Vec3((u - 31.5) / 64 * z, (v - 23.5) / 64 * z, z);
 }
@@ -42,7 +42,7 @@ TEST(VisibilityEpsilon, OccluderJustInsideTheRelativeEpsilonHides) {
   const double L = 10, eps = 1e-4, t_max = (1 - eps) * L;
   const TriangleMesh occluder = square_at(t_max - 1e-5 * L, 1.0);
   const RayCaster caster(occluder);
-  EXPECT_FALSE(point_visible(caster, axis_camera(), Vec3(0, 0, L), eps, 0.0));
+  EXPECT_FALSE(point_visible(caster, small_axis_camera(), Vec3(0, 0, L), eps, 0.0));
 }
 
 TEST(VisibilityEpsilon, OccluderJustOutsideTheRelativeEpsilonDoesNotHide) {
@@ -51,7 +51,7 @@ TEST(VisibilityEpsilon, OccluderJustOutsideTheRelativeEpsilonDoesNotHide) {
   const double L = 10, eps = 1e-4, t_max = (1 - eps) * L;
   const TriangleMesh occluder = square_at(t_max + 1e-5 * L, 1.0);
   const RayCaster caster(occluder);
-  EXPECT_TRUE(point_visible(caster, axis_camera(), Vec3(0, 0, L), eps, 0.0));
+  EXPECT_TRUE(point_visible(caster, small_axis_camera(), Vec3(0, 0, L), eps, 0.0));
 }
 
 TEST(VisibilityEpsilon, AbsoluteBiasShortensTheSegmentToo) {
@@ -60,24 +60,24 @@ TEST(VisibilityEpsilon, AbsoluteBiasShortensTheSegmentToo) {
   {
     const TriangleMesh m = square_at(L - bias - 1e-4, 1.0);
     const RayCaster caster(m);
-    EXPECT_FALSE(point_visible(caster, axis_camera(), Vec3(0, 0, L), 0.0, bias));
+    EXPECT_FALSE(point_visible(caster, small_axis_camera(), Vec3(0, 0, L), 0.0, bias));
   }
   {
     const TriangleMesh m = square_at(L - bias + 1e-4, 1.0);
     const RayCaster caster(m);
-    EXPECT_TRUE(point_visible(caster, axis_camera(), Vec3(0, 0, L), 0.0, bias));
+    EXPECT_TRUE(point_visible(caster, small_axis_camera(), Vec3(0, 0, L), 0.0, bias));
   }
   // Both together: (1 - eps) L - bias.
   const double eps = 1e-3, end = (1 - eps) * L - bias;  // 9.98
   {
     const TriangleMesh m = square_at(end - 1e-4, 1.0);
     const RayCaster caster(m);
-    EXPECT_FALSE(point_visible(caster, axis_camera(), Vec3(0, 0, L), eps, bias));
+    EXPECT_FALSE(point_visible(caster, small_axis_camera(), Vec3(0, 0, L), eps, bias));
   }
   {
     const TriangleMesh m = square_at(end + 1e-4, 1.0);
     const RayCaster caster(m);
-    EXPECT_TRUE(point_visible(caster, axis_camera(), Vec3(0, 0, L), eps, bias));
+    EXPECT_TRUE(point_visible(caster, small_axis_camera(), Vec3(0, 0, L), eps, bias));
   }
 }
 
@@ -98,7 +98,7 @@ TEST(VisibilityEpsilon, VertexVisibilityWithTheSpecDefaults) {
     plate.faces = {{0, 2, 1}, {0, 3, 2}};
     m.append(plate);
     const RayCaster caster(m);
-    PinholeCamera wide = axis_camera();
+    PinholeCamera wide = small_axis_camera();
     wide.fx = wide.fy = 8;  // the whole far square in the image
     const VertexVisibility vis(m, caster, {wide});
     EXPECT_EQ(vis.visible(0, 0), visible) << "gap " << gap;
@@ -118,7 +118,7 @@ struct Empty {
 
 TEST(VisibilityBorder, VertexExactlyOnTheImageBorderIsVisible) {
   const Empty e;
-  const PinholeCamera cam = axis_camera();
+  const PinholeCamera cam = small_axis_camera();
   for (const Vec2& px : {Vec2(0, 20), Vec2(63, 20), Vec2(10, 0), Vec2(10, 47), Vec2(0, 0),
                          Vec2(63, 47), Vec2(0, 47), Vec2(63, 0)}) {
     const Vec3 p = at_pixel(px.x(), px.y(), 2.0);
@@ -133,7 +133,7 @@ TEST(VisibilityBorder, VertexJustBeyondTheBorderIsNot) {
   // 1/64 px beyond; also within the image's pixel extent [-0.5, W - 0.5]:
   // the SPEC's rule is on pixel centres.
   const Empty e;
-  const PinholeCamera cam = axis_camera();
+  const PinholeCamera cam = small_axis_camera();
   for (const Vec2& px : {Vec2(-1.0 / 64, 20), Vec2(63 + 1.0 / 64, 20), Vec2(10, -1.0 / 64),
                          Vec2(10, 47 + 1.0 / 64), Vec2(-0.25, 20), Vec2(63.25, 47)}) {
     const Vec3 p = at_pixel(px.x(), px.y(), 2.0);
@@ -149,7 +149,7 @@ TEST(VisibilityBorder, VertexJustBeyondTheBorderIsNot) {
 TEST(VisibilityBehind, PointBehindTheCameraIsNotVisible) {
   // Its central projection would land on the image centre.
   const Empty e;
-  const PinholeCamera cam = axis_camera();
+  const PinholeCamera cam = small_axis_camera();
   EXPECT_FALSE(point_visible(e.caster, cam, Vec3(0, 0, -1), 1e-4, 0.0));
   EXPECT_FALSE(point_visible(e.caster, cam, at_pixel(10, 10, -2.0), 1e-4, 0.0));
   Vec2 px;
@@ -158,7 +158,7 @@ TEST(VisibilityBehind, PointBehindTheCameraIsNotVisible) {
 
 TEST(VisibilityBehind, PointInTheCameraPlaneIsNotVisible) {
   const Empty e;
-  const PinholeCamera cam = axis_camera();
+  const PinholeCamera cam = small_axis_camera();
   EXPECT_FALSE(point_visible(e.caster, cam, Vec3(0.5, 0.2, 0.0), 1e-4, 0.0));
   EXPECT_FALSE(point_visible(e.caster, cam, Vec3(0, 0, 0), 1e-4, 0.0));
   // Just in front, on the axis: visible.
@@ -170,7 +170,7 @@ TEST(VisibilityBehind, CameraTurnedAwaySeesNothingOfTheMesh) {
   // looking along -z: every vertex behind it.
   const TriangleMesh m = square_at(10, 1.0);
   const RayCaster caster(m);
-  PinholeCamera away = axis_camera();
+  PinholeCamera away = small_axis_camera();
   away.fx = away.fy = 8;
   away.R = Eigen::AngleAxisd(M_PI, Vec3::UnitY()).toRotationMatrix();  // forward = -z
   ASSERT_NEAR(away.forward().z(), -1.0, 1e-15);
@@ -190,7 +190,7 @@ Scene grazing_scene() {
   Scene s;
   s.mesh.vertices = {Vec3(-7, -1, 16), Vec3(7, -1, 64), Vec3(0, 2, 40)};
   s.mesh.faces = {{0, 2, 1}};
-  PinholeCamera cam = axis_camera();
+  PinholeCamera cam = small_axis_camera();
   cam.fx = cam.fy = 100;
   cam.cx = 99.5;
   cam.cy = 74.5;

@@ -59,11 +59,6 @@ class NumberReader {
   std::size_t index_ = 0;
 };
 
-bool exists_file(const fs::path& path) {
-  std::error_code ec;
-  return fs::is_regular_file(path, ec);
-}
-
 // `path`: bundle.out, or a folder holding it (directly or in bundle/, the
 // layout of Bundler's own scripts).
 std::string find_bundle_file(const std::string& path) {
@@ -72,7 +67,7 @@ std::string find_bundle_file(const std::string& path) {
   if (!fs::is_directory(path, ec)) return path;
   for (const fs::path& c :
        {fs::path(path) / "bundle.out", fs::path(path) / "bundle" / "bundle.out"})
-    if (exists_file(c)) return c.string();
+    if (is_file(c)) return c.string();
   throw Error("folder holds no bundle.out (nor bundle/bundle.out)", path);
 }
 
@@ -80,8 +75,8 @@ std::string find_list_file(const std::string& bundle_file) {
   const fs::path folder = fs::absolute(bundle_file).parent_path();
   const fs::path beside = folder / "list.txt";
   const fs::path above = (folder / ".." / "list.txt").lexically_normal();
-  if (exists_file(beside)) return beside.string();
-  if (exists_file(above)) return above.string();
+  if (is_file(beside)) return beside.string();
+  if (is_file(above)) return above.string();
   throw Error("image list not found: looked for " + beside.string() + " and " + above.string(),
               bundle_file);
 }
@@ -178,7 +173,7 @@ View make_view(const BundlerCamera& b, const ListEntry& entry, std::size_t index
   View view;
   view.label = entry.path;
   view.image_path = fs::absolute(resolve(entry.path, image_base)).lexically_normal().string();
-  if (!exists_file(view.image_path))
+  if (!is_file(view.image_path))
     throw Error("image of registered camera " + std::to_string(index) +
                     " not found: " + view.image_path +
                     " (its size fixes the principal point); pass the image "

@@ -227,11 +227,6 @@ std::vector<colmap::Point> read_points_txt(const std::string& file) {
   return points;
 }
 
-bool exists_file(const fs::path& path) {
-  std::error_code ec;
-  return fs::is_regular_file(path, ec);
-}
-
 // Where images may live, in the order read_colmap tries them (scene_io.h).
 std::vector<fs::path> image_folder_candidates(const fs::path& model, const std::string& image_dir) {
   std::vector<fs::path> candidates;
@@ -247,7 +242,7 @@ std::vector<fs::path> image_folder_candidates(const fs::path& model, const std::
 fs::path find_image_folder(const std::vector<fs::path>& candidates,
                            const std::string& first_image) {
   for (const auto& c : candidates)
-    if (exists_file(resolve(first_image, c.string()))) return c;
+    if (is_file(resolve(first_image, c.string()))) return c;
   return {};
 }
 
@@ -271,7 +266,7 @@ void attach_mesh(const fs::path& model, Scene* scene) {
   const fs::path candidates[] = {model / "meshed.ply", model / ".." / "meshed-poisson.ply",
                                  model / ".." / "meshed-delaunay.ply"};
   for (const auto& c : candidates) {
-    if (!exists_file(c)) continue;
+    if (!is_file(c)) continue;
     scene->mesh_path = c.lexically_normal().string();
     scene->mesh = read_mesh(scene->mesh_path);
     return;
@@ -279,7 +274,7 @@ void attach_mesh(const fs::path& model, Scene* scene) {
 }
 
 bool is_binary_model(const fs::path& folder) {
-  return exists_file(folder / "cameras.bin") && exists_file(folder / "images.bin");
+  return is_file(folder / "cameras.bin") && is_file(folder / "images.bin");
 }
 
 fs::path model_folder(const std::string& path) {
@@ -291,7 +286,7 @@ fs::path model_folder(const std::string& path) {
   if (folder.empty()) folder = ".";
   if (is_binary_model(folder)) return folder;
   for (const char* name : {"cameras.txt", "images.txt"})
-    if (!exists_file(folder / name))
+    if (!is_file(folder / name))
       throw Error(std::string("not a COLMAP model: ") + name +
                       " missing (and no cameras.bin + images.bin)",
                   folder.string());
@@ -307,7 +302,7 @@ colmap::Model read_model(const fs::path& folder) {
   model.points_file = (folder / "points3D.txt").string();
   model.cameras = read_cameras_txt(model.cameras_file);
   model.images = read_images_txt(model.images_file);
-  model.has_points = exists_file(model.points_file);
+  model.has_points = is_file(model.points_file);
   if (model.has_points) model.points = read_points_txt(model.points_file);
   return model;
 }

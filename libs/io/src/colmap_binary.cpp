@@ -77,7 +77,7 @@ class ByteReader {
   std::size_t pos_ = 0;
 };
 
-int image_size(std::uint64_t v, const char* what, ByteReader& in) {
+int binary_image_size(std::uint64_t v, const char* what, ByteReader& in) {
   if (v == 0 || v > (1u << 30))
     in.fail(std::string(what) + " must be a positive image size, got " + std::to_string(v));
   return static_cast<int>(v);
@@ -92,8 +92,8 @@ Camera read_camera(ByteReader& in, long long* id) {
             std::to_string(model_id) + " (COLMAP 3.8 models are 0..10: " + model_names() + ")");
   Camera cam;
   cam.model = spec->name;
-  const int width = image_size(in.read<std::uint64_t>("WIDTH"), "WIDTH", in);
-  const int height = image_size(in.read<std::uint64_t>("HEIGHT"), "HEIGHT", in);
+  const int width = binary_image_size(in.read<std::uint64_t>("WIDTH"), "WIDTH", in);
+  const int height = binary_image_size(in.read<std::uint64_t>("HEIGHT"), "HEIGHT", in);
   std::vector<double> params;
   for (std::size_t i = 0; i < spec->num_params; ++i) params.push_back(in.read_double("PARAMS"));
   try {
@@ -145,11 +145,6 @@ Point read_point(ByteReader& in) {
   return p;
 }
 
-bool exists(const fs::path& p) {
-  std::error_code ec;
-  return fs::is_regular_file(p, ec);
-}
-
 }  // namespace
 
 Model read_binary_model(const std::string& folder) {
@@ -174,7 +169,7 @@ Model read_binary_model(const std::string& folder) {
   for (std::uint64_t i = 0; i < num_images; ++i) model.images.push_back(read_image(imgs));
   imgs.expect_end();
 
-  if (exists(model.points_file)) {
+  if (is_file(model.points_file)) {
     model.has_points = true;
     ByteReader pts(read_file(model.points_file), model.points_file);
     const std::uint64_t num_points = pts.read_count(51, "number of 3-D points");

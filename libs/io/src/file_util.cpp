@@ -38,6 +38,11 @@ std::uintmax_t file_size(const std::string& path) {
   return size;
 }
 
+bool is_file(const std::filesystem::path& path) {
+  std::error_code ec;
+  return fs::is_regular_file(path, ec);
+}
+
 std::string extension_lower(const std::string& path) {
   std::string ext = fs::path(path).extension().string();
   for (auto& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));

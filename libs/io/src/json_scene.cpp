@@ -22,7 +22,7 @@ using nlohmann::json;
 namespace meshnbv::io {
 namespace {
 
-double number(const json& j, const char* key, const std::string& file, const std::string& where) {
+double json_number(const json& j, const char* key, const std::string& file, const std::string& where) {
   if (!j.contains(key)) throw Error(std::string("missing \"") + key + "\"", file, -1, where);
   const json& v = j.at(key);
   if (!v.is_number()) throw Error(std::string("\"") + key + "\" must be a number", file, -1, where);
@@ -31,8 +31,8 @@ double number(const json& j, const char* key, const std::string& file, const std
 
 // An image size: a whole number that fits an int (a cast of 1e300 to int
 // would be undefined behaviour).
-int image_size(const json& j, const char* key, const std::string& file, const std::string& where) {
-  const double v = number(j, key, file, where);
+int json_image_size(const json& j, const char* key, const std::string& file, const std::string& where) {
+  const double v = json_number(j, key, file, where);
   if (!(v >= 1 && v <= (1 << 30) && v == std::floor(v)))
     throw Error(std::string("\"") + key + "\" must be a whole number of pixels in [1, 2^30], got " +
                     j.at(key).dump(),
@@ -72,7 +72,7 @@ void read_lens(const json& j, PinholeCamera* c, const std::string& file, const s
       {"k4", &PinholeCamera::k4}, {"k5", &PinholeCamera::k5}, {"k6", &PinholeCamera::k6},
       {"p1", &PinholeCamera::p1}, {"p2", &PinholeCamera::p2}, {"skew", &PinholeCamera::skew}};
   for (const auto& [key, member] : params)
-    if (j.contains(key)) c->*member = number(j, key, file, where);
+    if (j.contains(key)) c->*member = json_number(j, key, file, where);
 }
 
 // k1, k2 always; the rest of the lens only when set, so that pinhole and
@@ -91,12 +91,12 @@ void write_lens(const PinholeCamera& c, json* cam) {
 PinholeCamera camera_from_json(const json& j, const std::string& file, const std::string& where) {
   if (!j.is_object()) throw Error("\"camera\" must be an object", file, -1, where);
   PinholeCamera c;
-  c.width = image_size(j, "width", file, where);
-  c.height = image_size(j, "height", file, where);
-  c.fx = number(j, "fx", file, where);
-  c.fy = number(j, "fy", file, where);
-  c.cx = number(j, "cx", file, where);
-  c.cy = number(j, "cy", file, where);
+  c.width = json_image_size(j, "width", file, where);
+  c.height = json_image_size(j, "height", file, where);
+  c.fx = json_number(j, "fx", file, where);
+  c.fy = json_number(j, "fy", file, where);
+  c.cx = json_number(j, "cx", file, where);
+  c.cy = json_number(j, "cy", file, where);
   read_lens(j, &c, file, where);
   const json& R = j.value("R", json());
   const json& t = j.value("t", json());

@@ -46,7 +46,7 @@ namespace {
 
 using Mat4 = Eigen::Matrix4d;
 
-std::vector<double> numbers(const pugi::xml_node& node, std::size_t expected,
+std::vector<double> xml_numbers(const pugi::xml_node& node, std::size_t expected,
                             const std::string& file, const std::string& what) {
   std::istringstream ss(node.child_value());
   std::vector<double> out;
@@ -62,7 +62,7 @@ std::vector<double> numbers(const pugi::xml_node& node, std::size_t expected,
 double optional_number(const pugi::xml_node& parent, const char* name, const std::string& file,
                        const std::string& what) {
   const pugi::xml_node n = parent.child(name);
-  return n ? numbers(n, 1, file, what + " <" + name + ">")[0] : 0.0;
+  return n ? xml_numbers(n, 1, file, what + " <" + name + ">")[0] : 0.0;
 }
 
 int size_attribute(const pugi::xml_node& node, const char* name, const std::string& file,
@@ -132,14 +132,14 @@ Mat4 similarity(const pugi::xml_node& t, const std::string& file, const std::str
   if (!t) return m;
   Mat3 R = Mat3::Identity();
   if (t.child("rotation")) {
-    const auto r = numbers(t.child("rotation"), 9, file, what + " rotation");
+    const auto r = xml_numbers(t.child("rotation"), 9, file, what + " rotation");
     for (int i = 0; i < 9; ++i) R(i / 3, i % 3) = r[std::size_t(i)];
   }
-  const double s = t.child("scale") ? numbers(t.child("scale"), 1, file, what + " scale")[0] : 1.0;
+  const double s = t.child("scale") ? xml_numbers(t.child("scale"), 1, file, what + " scale")[0] : 1.0;
   if (!(s > 0) || !std::isfinite(s)) throw Error(what + ": scale must be positive", file);
   m.topLeftCorner<3, 3>() = s * R;
   if (t.child("translation")) {
-    const auto v = numbers(t.child("translation"), 3, file, what + " translation");
+    const auto v = xml_numbers(t.child("translation"), 3, file, what + " translation");
     m.topRightCorner<3, 1>() = Vec3(v[0], v[1], v[2]);
   }
   return m;
@@ -242,7 +242,7 @@ Scene read_metashape(const std::string& path, const std::string& image_dir) {
     View view;
     view.label = label;
     view.camera = sensors.cameras[sensor_id];
-    const auto t = numbers(node.child("transform"), 16, path, what + " transform");
+    const auto t = xml_numbers(node.child("transform"), 16, path, what + " transform");
     Mat4 to_chunk;
     for (int i = 0; i < 16; ++i) to_chunk(i / 4, i % 4) = t[std::size_t(i)];
     const auto component = components.find(node.attribute("component_id").value());

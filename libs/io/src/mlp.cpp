@@ -28,7 +28,7 @@ namespace {
 // PixelSizeMm we write; any positive value gives the same pixels.
 constexpr double kWrittenPixelSizeMm = 0.0369161;
 
-std::vector<double> numbers(const char* text, std::size_t expected, const std::string& file,
+std::vector<double> mlp_numbers(const char* text, std::size_t expected, const std::string& file,
                             const std::string& what) {
   std::istringstream ss(text ? text : "");
   std::vector<double> out;
@@ -94,7 +94,7 @@ PinholeCamera camera_from_vcg(const pugi::xml_node& node, const std::string& fil
     if (binary)
       return ints ? binary_numbers<int>(attr.value(), count, file, what)
                   : binary_numbers<float>(attr.value(), count, file, what);
-    return numbers(attr.value(), count, file, what);
+    return mlp_numbers(attr.value(), count, file, what);
   };
   const auto tra = get("TranslationVector", 3);
   const auto rot = get("RotationMatrix", 16);
@@ -142,7 +142,7 @@ PinholeCamera camera_from_vcg(const pugi::xml_node& node, const std::string& fil
 Eigen::Matrix4d read_matrix(const pugi::xml_node& node, const std::string& file) {
   Eigen::Matrix4d m = Eigen::Matrix4d::Identity();
   if (!node) return m;
-  const auto v = numbers(node.child_value(), 16, file, "MLMatrix44");
+  const auto v = mlp_numbers(node.child_value(), 16, file, "MLMatrix44");
   for (int r = 0; r < 4; ++r)
     for (int c = 0; c < 4; ++c) m(r, c) = v[4 * r + c];
   return m;

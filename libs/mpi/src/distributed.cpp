@@ -26,7 +26,7 @@ namespace meshnbv::mpi {
 namespace {
 
 constexpr int kTagRequest = 11, kTagTile = 12, kTagPartsSize = 13, kTagParts = 14;
-enum Job : std::int64_t { kStop = 0, kPri = 1, kScore = 2 };
+enum Job : std::int64_t { kJobStop = 0, kJobPri = 1, kJobScore = 2 };
 // A worker's message to rank 0's dispatcher: its next tile, or that it failed.
 enum Request : std::int64_t { kNext = 0, kFailed = 1 };
 // At most this many faces per tile, and at least this many tiles per rank
@@ -440,7 +440,7 @@ PriResult distributed_pri(const Scene& scene, const PriOptions& options, const P
   }
   // The readers' checks on rank 0 before any rank starts.
   scene.mesh.validate(scene.mesh_path);
-  broadcast_job(kPri);
+  broadcast_job(kJobPri);
   RankStats own;
   std::vector<RankStats> stats;
   std::vector<PriPart> computed =
@@ -467,19 +467,19 @@ PriResult distributed_pri(const Scene& scene, const PriOptions& options, const P
 
 int serve_jobs() {
   for (;;) {
-    std::int64_t job = kStop;
+    std::int64_t job = kJobStop;
     MPI_Request r;
     check(MPI_Ibcast(&job, 1, MPI_INT64_T, 0, MPI_COMM_WORLD, &r), "broadcast");
     wait_idle(&r);
-    if (job == kStop) return 0;
-    if (job == kScore) {
+    if (job == kJobStop) return 0;
+    if (job == kJobScore) {
       try {
         serve_score_job();
       } catch (const Error&) {
       }
       continue;
     }
-    if (job != kPri) throw Error("unknown job " + std::to_string(job) + " from rank 0");
+    if (job != kJobPri) throw Error("unknown job " + std::to_string(job) + " from rank 0");
     RankStats own;
     std::vector<RankStats> stats;
     try {
@@ -505,7 +505,7 @@ std::vector<EnergyTerms> distributed_scores(const TriangleMesh& mesh, const Ener
   job.options = options;
   job.cameras = candidates;
   std::string bytes = write_score_job(job);
-  broadcast_job(kScore);
+  broadcast_job(kJobScore);
   sent.key = 0;  // until every rank has it
   broadcast(&bytes, 0);
   std::string error;
@@ -527,6 +527,6 @@ std::vector<EnergyTerms> distributed_scores(const TriangleMesh& mesh, const Ener
   return out;
 }
 
-void stop_workers() { broadcast_job(kStop); }
+void stop_workers() { broadcast_job(kJobStop); }
 
 }  // namespace meshnbv::mpi

@@ -3,6 +3,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <filesystem>
 #include <string>
 #include <utility>
 #include <vector>
@@ -12,6 +13,9 @@ namespace meshnbv::io {
 // Whole file as bytes; throws Error if missing or unreadable.
 std::string read_file(const std::string& path);
 std::uintmax_t file_size(const std::string& path);
+// True when `path` is a regular file (or a link to one); false when it is
+// missing, a folder, or cannot be examined. Never throws.
+bool is_file(const std::filesystem::path& path);
 // Lower-case extension with the dot (".ply"); empty if none.
 std::string extension_lower(const std::string& path);
 
