@@ -21,17 +21,22 @@ JOBS=${MESHNBV_JOBS:-$(nproc)}
 #   core/EvalLoop.TinySyntheticLoopEndToEnd and core/EvalMesher.*;
 # - cli/loop_dense: the same with the dense backend, whose code runs under
 #   the sanitizers in core/DenseStereo.* and core/DensePoints.*;
+# - report/viewer_3d: headless Chromium (not instrumented) clicking through
+#   a report; meshnbv's part of it (run, the report's files) runs under the
+#   sanitizers in cli/run and core/Report.*;
 # - the ground-truth quality tests (PriFindsDegradation, PriQuality,
 #   QualityIndex): 1280x960 renders and PRI on tens of thousands of faces,
 #   the same code as core/Pri.* and core/PriOffset.* on small scenes.
-EXCLUDE=${MESHNBV_ASAN_EXCLUDE-'^(options/front_ends|cli/loop|cli/loop_dense)$|PriFindsDegradation|PriQuality\.|QualityIndex'}
+EXCLUDE=${MESHNBV_ASAN_EXCLUDE-'^(options/front_ends|cli/loop|cli/loop_dense|report/viewer_3d)$|PriFindsDegradation|PriQuality\.|QualityIndex'}
 # cli/extreme_options runs every numeric flag with each of its values; here
 # with the values that reach different code (negative, zero, the smallest
 # double, beyond int and int64, huge, NaN, infinite): 8 of its 10.
 export MESHNBV_EXTREME_VALUES=${MESHNBV_EXTREME_VALUES-"-1 0 1e-308 2147483648 99999999999999999999 1e308 nan -inf"}
-# and `run` with only its own flags (those of pri and suggest are varied
-# with pri and suggest, through the same tables and checks).
-export MESHNBV_EXTREME_RUN_OWN_FLAGS=${MESHNBV_EXTREME_RUN_OWN_FLAGS-1}
+# and `run` and `loop` with only their own flags (those of pri and suggest
+# are varied with pri and suggest, through the same tables and checks).
+export MESHNBV_EXTREME_OWN_FLAGS=${MESHNBV_EXTREME_OWN_FLAGS-1}
+# cli/mpi without its 215k-face scene (the sample's runs are the same code).
+export MESHNBV_MPI_LARGE_SCENE=${MESHNBV_MPI_LARGE_SCENE-0}
 
 rm -rf "$BUILD"
 mkdir -p "$BUILD"
