@@ -6,11 +6,12 @@
 #include <iostream>
 #include <map>
 #include <memory>
-
 #include <nlohmann/json.hpp>
+#include <optional>
 
 #include "commands.h"
 #include "meshnbv/error.h"
+#include "meshnbv/io/exif.h"
 #include "meshnbv/io/file_util.h"
 
 namespace meshnbv::cli {
@@ -22,9 +23,7 @@ struct Range {
     lo = std::min(lo, v);
     hi = std::max(hi, v);
   }
-  nlohmann::json to_json() const {
-    return lo <= hi ? nlohmann::json{lo, hi} : nlohmann::json(nullptr);
-  }
+  nlohmann::json to_json() const { return lo <= hi ? nlohmann::json{lo, hi} : nlohmann::json(nullptr); }
 };
 
 // Lens models with their view counts, the image files not found, and the
@@ -37,8 +36,7 @@ void add_import_checks(const Scene& scene, nlohmann::json* out) {
   for (const auto& view : scene.views) {
     ++lenses[view.camera.lens_description()];
     std::error_code ec;
-    if (!view.image_path.empty() && !std::filesystem::exists(view.image_path, ec) &&
-        num_missing++ < 5)
+    if (!view.image_path.empty() && !std::filesystem::exists(view.image_path, ec) && num_missing++ < 5)
       missing.push_back(view.image_path);
   }
   (*out)["views"]["lenses"] = lenses;
@@ -49,11 +47,59 @@ void add_import_checks(const Scene& scene, nlohmann::json* out) {
     return;
   }
   const ReprojectionStats r = reprojection_error(scene);
-  (*out)["sparse_points"] = {{"points", scene.sparse_points.size()},
-                             {"observations", r.observations},
-                             {"behind_camera", r.behind},
-                             {"reprojection_error_px",
-                              {{"median", r.median}, {"mean", r.mean}, {"max", r.max}}}};
+  (*out)["sparse_points"] = {
+      {"points", scene.sparse_points.size()},
+      {"observations", r.observations},
+      {"behind_camera", r.behind},
+      {"reprojection_error_px", {{"median", r.median}, {"mean", r.mean}, {"max", r.max}}}};
+}
+
+// The photos' headers (no pixels decoded): stored sizes, bit depths, EXIF
+// orientation tags, the photos Scene::image will read turned by their tag
+// (stored on their side of the camera's size) and those that fit their
+// camera neither way.
+nlohmann::json photo_summary(const Scene& scene) {
+  using nlohmann::json;
+  std::map<std::string, int> sizes, bits, orientations;
+  std::size_t read = 0, turned = 0, mismatched = 0, unreadable = 0;
+  json mismatch_first = json::array(), unreadable_first = json::array();
+  for (const auto& view : scene.views) {
+    std::error_code ec;
+    if (view.image_path.empty() || !std::filesystem::exists(view.image_path, ec)) continue;
+    std::optional<io::PhotoHeader> h;
+    try {
+      h = io::read_photo_header(view.image_path);
+    } catch (const Error& e) {
+      if (unreadable++ < 5) unreadable_first.push_back(e.what());
+      continue;
+    }
+    if (!h || h->width <= 0) continue;  // a type without a header exiv2 reads (PGM, BMP)
+    ++read;
+    ++sizes[std::to_string(h->width) + "x" + std::to_string(h->height)];
+    ++bits[h->bits > 0 ? std::to_string(h->bits) : std::string("unknown")];
+    if (h->orientation > 0) ++orientations[std::to_string(h->orientation)];
+    const bool swaps = h->orientation >= 5;  // tags 5..8 turn by 90 degrees
+    const bool exif = view.orientation == ImageOrientation::exif;
+    const int w = exif && swaps ? h->height : h->width, ht = exif && swaps ? h->width : h->height;
+    const PinholeCamera& c = view.camera;
+    if (w == c.width && ht == c.height) continue;
+    if (!exif && swaps && h->height == c.width && h->width == c.height) {
+      ++turned;
+      continue;
+    }
+    if (mismatched++ < 5)
+      mismatch_first.push_back(view.label + ": " + std::to_string(w) + "x" + std::to_string(ht) +
+                               ", camera " + std::to_string(c.width) + "x" + std::to_string(c.height));
+  }
+  return {{"headers_read", read},
+          {"sizes", sizes},
+          {"bits", bits},
+          {"exif_orientation", orientations},
+          {"read_turned", turned},
+          {"size_mismatch", mismatched},
+          {"size_mismatch_first", mismatch_first},
+          {"unreadable", unreadable},
+          {"unreadable_first", unreadable_first}};
 }
 
 nlohmann::json summarize(const Scene& scene) {
@@ -115,6 +161,7 @@ nlohmann::json summarize(const Scene& scene) {
   v["cy"] = cy.to_json();
   v["center_distance_to_mesh_box_center"] = dist.to_json();
   out["views"] = v;
+  out["photos"] = photo_summary(scene);
   add_import_checks(scene, &out);
   out["warnings"] = scene.warnings;
   return out;
@@ -130,20 +177,19 @@ void print_text(const nlohmann::json& s) {
     return j.is_null() ? std::string("-") : num(j[0]) + " .. " + num(j[1]);
   };
   const auto& m = s["mesh"];
-  std::cout << "scene      " << s["scene"].get<std::string>() << " ("
-            << s["format"].get<std::string>() << ")\n";
+  std::cout << "scene      " << s["scene"].get<std::string>() << " (" << s["format"].get<std::string>()
+            << ")\n";
   if (!s["producer"].get<std::string>().empty())
     std::cout << "from       " << s["producer"].get<std::string>() << "\n";
-  std::cout << "mesh       "
-            << (m["file"].is_null() ? std::string("(none)") : m["file"].get<std::string>())
+  std::cout << "mesh       " << (m["file"].is_null() ? std::string("(none)") : m["file"].get<std::string>())
             << "\n";
-  std::cout << "  vertices " << m["vertices"] << ", faces " << m["faces"] << ", area "
-            << num(m["area"]) << "\n";
+  std::cout << "  vertices " << m["vertices"] << ", faces " << m["faces"] << ", area " << num(m["area"])
+            << "\n";
   if (!m["bounding_box"].is_null()) {
     const auto& b = m["bounding_box"];
-    std::cout << "  bbox     (" << num(b["min"][0]) << ", " << num(b["min"][1]) << ", "
-              << num(b["min"][2]) << ") .. (" << num(b["max"][0]) << ", " << num(b["max"][1])
-              << ", " << num(b["max"][2]) << "), diagonal " << num(b["diagonal"]) << "\n";
+    std::cout << "  bbox     (" << num(b["min"][0]) << ", " << num(b["min"][1]) << ", " << num(b["min"][2])
+              << ") .. (" << num(b["max"][0]) << ", " << num(b["max"][1]) << ", " << num(b["max"][2])
+              << "), diagonal " << num(b["diagonal"]) << "\n";
   }
   std::cout << "  checks   degenerate faces " << m["degenerate_faces"] << ", boundary edges "
             << m["boundary_edges"] << ", non-manifold edges " << m["nonmanifold_edges"]
@@ -159,24 +205,51 @@ void print_text(const nlohmann::json& s) {
     std::cout << (first ? "" : ", ") << res << " x" << n;
     first = false;
   }
-  std::cout << "\n  fx       " << range(v["fx"]) << "\n  fy       " << range(v["fy"])
-            << "\n  cx       " << range(v["cx"]) << "\n  cy       " << range(v["cy"])
+  std::cout << "\n  fx       " << range(v["fx"]) << "\n  fy       " << range(v["fy"]) << "\n  cx       "
+            << range(v["cx"]) << "\n  cy       " << range(v["cy"])
             << "\n  camera distance to mesh box centre " << range(v["center_distance_to_mesh_box_center"])
             << "\n";
-  for (const auto& [lens, n] : v["lenses"].items())
-    std::cout << "  lens     " << lens << " x" << n << "\n";
+  for (const auto& [lens, n] : v["lenses"].items()) std::cout << "  lens     " << lens << " x" << n << "\n";
   if (v["missing_images"].get<std::size_t>() > 0) {
     std::cout << "  missing  " << v["missing_images"] << " image files not found, e.g.";
     for (const auto& f : v["missing_images_first"]) std::cout << " " << f.get<std::string>();
+    std::cout << "\n";
+  }
+  const auto& p = s["photos"];
+  if (p["headers_read"].get<std::size_t>() > 0) {
+    std::cout << "photos     ";
+    first = true;
+    for (const auto& [size, n] : p["sizes"].items()) {
+      std::cout << (first ? "" : ", ") << size << " x" << n;
+      first = false;
+    }
+    std::cout << "; bits";
+    for (const auto& [b, n] : p["bits"].items()) std::cout << " " << b << " x" << n;
+    if (!p["exif_orientation"].empty()) {
+      std::cout << "; EXIF orientation";
+      for (const auto& [o, n] : p["exif_orientation"].items()) std::cout << " " << o << " x" << n;
+    }
+    std::cout << "\n";
+    if (p["read_turned"].get<std::size_t>() > 0)
+      std::cout << "  turned   " << p["read_turned"]
+                << " photos stored on their side of their camera's size: read turned by their EXIF tag\n";
+    if (p["size_mismatch"].get<std::size_t>() > 0) {
+      std::cout << "  mismatch " << p["size_mismatch"] << " photos of another size than their camera's, e.g.";
+      for (const auto& f : p["size_mismatch_first"]) std::cout << " " << f.get<std::string>() << ";";
+      std::cout << "\n";
+    }
+  }
+  if (p["unreadable"].get<std::size_t>() > 0) {
+    std::cout << "  unread   " << p["unreadable"] << " photo headers not read, e.g.";
+    for (const auto& f : p["unreadable_first"]) std::cout << " " << f.get<std::string>() << ";";
     std::cout << "\n";
   }
   if (!s["sparse_points"].is_null()) {
     const auto& sp = s["sparse_points"];
     const auto& e = sp["reprojection_error_px"];
     std::cout << "sparse     " << sp["points"] << " points, " << sp["observations"]
-              << " observations; reprojection error through these cameras: median "
-              << num(e["median"]) << " px, mean " << num(e["mean"]) << " px, max " << num(e["max"])
-              << " px";
+              << " observations; reprojection error through these cameras: median " << num(e["median"])
+              << " px, mean " << num(e["mean"]) << " px, max " << num(e["max"]) << " px";
     if (sp["behind_camera"].get<std::size_t>() > 0)
       std::cout << "; " << sp["behind_camera"] << " observations behind their camera";
     std::cout << "\n";

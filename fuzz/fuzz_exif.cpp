@@ -1,4 +1,5 @@
-// EXIF of a photo through exiv2 (io/exif.h): GPS and focal length.
+// EXIF of a photo through exiv2 (io/exif.h): GPS and focal length, and the
+// header `meshnbv info` reads (size, bit depth, orientation tag).
 #include <cmath>
 
 #include "fuzz_target.h"
@@ -11,6 +12,12 @@ MESHNBV_FUZZ_TARGET(exif) {
         std::string(reinterpret_cast<const char*>(data), size), "photo.jpg");
     if (e.latitude) FUZZ_CHECK(std::abs(*e.latitude) <= 90);
     if (e.longitude) FUZZ_CHECK(std::abs(*e.longitude) <= 180);
+  } catch (const meshnbv::Error&) {
+  }
+  try {
+    const auto h = meshnbv::io::read_photo_header_from_memory(
+        std::string(reinterpret_cast<const char*>(data), size), "photo.jpg");
+    if (h) FUZZ_CHECK(h->orientation >= 0 && h->orientation <= 8 && h->bits >= 0 && h->bits <= 64);
   } catch (const meshnbv::Error&) {
   }
   return 0;

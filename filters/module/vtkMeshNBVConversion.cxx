@@ -19,6 +19,7 @@
 #include "vtkPolyData.h"
 #include "vtkStringArray.h"
 #include "vtkUnsignedCharArray.h"
+#include "vtkUnsignedShortArray.h"
 
 #include "meshnbv/error.h"
 
@@ -215,14 +216,25 @@ vtkSmartPointer<vtkImageData> ToViewBlock(const meshnbv::View& view, const meshn
   {
     const int w = pixels->width(), h = pixels->height(), ch = pixels->channels();
     block->SetDimensions(w, h, 1);
-    vtkNew<vtkUnsignedCharArray> a;
+    // 8-bit photos as unsigned char, 16-bit ones as unsigned short; rows
+    // bottom-up.
+    vtkSmartPointer<vtkDataArray> a;
+    if (pixels->bits() == 16)
+    {
+      a = vtkSmartPointer<vtkUnsignedShortArray>::New();
+    }
+    else
+    {
+      a = vtkSmartPointer<vtkUnsignedCharArray>::New();
+    }
     a->SetName(PixelsName);
     a->SetNumberOfComponents(ch);
     a->SetNumberOfTuples(static_cast<vtkIdType>(w) * h);
-    const std::size_t row = static_cast<std::size_t>(w) * ch;
+    const std::size_t row = static_cast<std::size_t>(w) * ch * (pixels->bits() / 8);
+    auto* base = static_cast<std::uint8_t*>(a->GetVoidPointer(0));
     for (int y = 0; y < h; ++y)
     {
-      std::memcpy(a->GetPointer(static_cast<vtkIdType>(h - 1 - y) * w * ch), pixels->pixel(0, y), row);
+      std::memcpy(base + static_cast<std::size_t>(h - 1 - y) * row, pixels->data() + y * row, row);
     }
     block->GetPointData()->SetScalars(a);
   }
@@ -383,20 +395,29 @@ std::vector<ViewBlock> ExtractViews(vtkDataObject* views)
 namespace
 {
 
-// Rows flipped back to top-down; `to8` maps one component to 8 bits.
-template <typename T, typename To8>
-void CopyPixels(const T* values, int width, int height, int nc, meshnbv::Image* image, To8 to8)
+// Rows flipped back to top-down, the first `image->channels()` components
+// of each tuple (alpha dropped), as T (8 or 16 bits as the image holds).
+template <typename T>
+void CopyPixels(const T* values, int width, int height, int nc, meshnbv::Image* image)
 {
   const int channels = image->channels();
   for (int y = 0; y < height; ++y)
   {
     const T* src = values + static_cast<std::size_t>(height - 1 - y) * width * nc;
-    std::uint8_t* dst = image->pixel(0, y);
+    T* dst;
+    if constexpr (sizeof(T) == 2)
+    {
+      dst = image->pixel16(0, y);
+    }
+    else
+    {
+      dst = image->pixel(0, y);
+    }
     for (int x = 0; x < width; ++x)
     {
       for (int c = 0; c < channels; ++c)
       {
-        dst[x * channels + c] = to8(src[x * nc + c]);
+        dst[x * channels + c] = src[x * nc + c];
       }
     }
   }
@@ -421,17 +442,15 @@ meshnbv::Image ToImage(const ViewBlock& view)
       "contiguous tuples");
   }
   const int nc = a->GetNumberOfComponents();
-  meshnbv::Image image(dims[0], dims[1], nc >= 3 ? 3 : 1);  // alpha dropped
+  // Alpha dropped; unsigned short stays 16-bit, as the core keeps 16-bit files.
+  meshnbv::Image image(dims[0], dims[1], nc >= 3 ? 3 : 1, u16 ? 16 : 8);
   if (u8)
   {
-    CopyPixels(u8->GetPointer(0), dims[0], dims[1], nc, &image,
-      [](unsigned char v) { return static_cast<std::uint8_t>(v); });
+    CopyPixels(u8->GetPointer(0), dims[0], dims[1], nc, &image);
   }
   else
   {
-    // round(v / 257), in integers: what OpenCV gives the core for 16-bit files.
-    CopyPixels(u16->GetPointer(0), dims[0], dims[1], nc, &image,
-      [](unsigned short v) { return static_cast<std::uint8_t>((v + 128u) / 257u); });
+    CopyPixels(u16->GetPointer(0), dims[0], dims[1], nc, &image);
   }
   return image;
 }

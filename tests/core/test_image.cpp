@@ -1,14 +1,17 @@
 // Image loading and sampling: pixel centres at integers, bilinear inside
 // [0, W-1] x [0, H-1], nothing outside.
+#include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <thread>
-
 #include <opencv2/imgcodecs.hpp>
+#include <thread>
+#include <vector>
 
 #include "meshnbv/error.h"
 #include "meshnbv/image.h"
+#include "meshnbv/scene.h"
 #include "test_util.h"
 
 using namespace meshnbv;
@@ -88,14 +91,160 @@ TEST(Image, SaveLoadRoundTripPngTiffAndGrey) {
   EXPECT_EQ(g.pixel(2, 1)[0], 200);
 }
 
-TEST(Image, SixteenBitIsScaled) {
+TEST(Image, SixteenBitPngAndTiffKeptAt16Bits) {
   const std::string dir = test::temp_dir("image_16");
-  cv::Mat m(2, 2, CV_16UC1, cv::Scalar(65535));
-  m.at<std::uint16_t>(0, 1) = 257 * 100;
-  cv::imwrite(dir + "/d.png", m);
-  const Image img = Image::load(dir + "/d.png");
-  EXPECT_EQ(img.pixel(0, 0)[0], 255);
-  EXPECT_EQ(img.pixel(1, 0)[0], 100);
+  // Grey: 1000 and 1001 are one 8-bit level apart by a 257th.
+  cv::Mat g(2, 3, CV_16UC1, cv::Scalar(65535));
+  g.at<std::uint16_t>(0, 1) = 1000;
+  g.at<std::uint16_t>(0, 2) = 1001;
+  // RGB (OpenCV stores BGR): pixel (1, 1) has R 40000, G 20000, B 123.
+  cv::Mat c(2, 3, CV_16UC3, cv::Scalar(0, 0, 0));
+  c.at<cv::Vec<std::uint16_t, 3>>(1, 1) = {123, 20000, 40000};
+  for (const char* ext : {".png", ".tif"}) {
+    ASSERT_TRUE(cv::imwrite(dir + "/g" + ext, g));
+    ASSERT_TRUE(cv::imwrite(dir + "/c" + ext, c));
+    const Image grey = Image::load(dir + "/g" + ext);
+    ASSERT_EQ(grey.bits(), 16) << ext;
+    ASSERT_EQ(grey.channels(), 1);
+    EXPECT_EQ(grey.bytes(), 2u * 3u * 2u);
+    EXPECT_EQ(grey.pixel16(1, 0)[0], 1000);
+    EXPECT_EQ(grey.pixel16(2, 0)[0], 1001);
+    EXPECT_FLOAT_EQ(grey.luminance(1, 0), 1000.0f / 65535.0f);
+    EXPECT_FLOAT_EQ(grey.luminance(0, 0), 1.0f);
+    EXPECT_GT(grey.luminance(2, 0), grey.luminance(1, 0));  // lost at 8 bits
+    float v = -1;
+    ASSERT_TRUE(grey.sample_luminance(1.5, 0, &v));
+    EXPECT_NEAR(v, 1000.5 / 65535.0, 1e-7);
+    const FloatImage plane = FloatImage::luminance_of(grey);
+    EXPECT_FLOAT_EQ(plane.at(2, 0), 1001.0f / 65535.0f);
+
+    const Image rgb = Image::load(dir + "/c" + ext);
+    ASSERT_EQ(rgb.bits(), 16);
+    ASSERT_EQ(rgb.channels(), 3);
+    EXPECT_EQ(rgb.pixel16(1, 1)[0], 40000);  // RGB order
+    EXPECT_EQ(rgb.pixel16(1, 1)[1], 20000);
+    EXPECT_EQ(rgb.pixel16(1, 1)[2], 123);
+    EXPECT_NEAR(rgb.luminance(1, 1), (0.299 * 40000 + 0.587 * 20000 + 0.114 * 123) / 65535.0, 1e-6);
+    EXPECT_FLOAT_EQ(rgb.value(1, 1, 0), 40000.0f / 65535.0f);
+    float c3[3];
+    ASSERT_TRUE(rgb.sample_rgb(1, 1, c3));
+    EXPECT_FLOAT_EQ(c3[1], 20000.0f / 65535.0f);
+
+    // 8 bits on request: round(v / 257).
+    const Image eight = rgb.to_8bit();
+    EXPECT_EQ(eight.bits(), 8);
+    EXPECT_EQ(eight.pixel(1, 1)[0], 156);  // 40000 / 257 = 155.6
+    EXPECT_EQ(eight.pixel(1, 1)[2], 0);    // 123 / 257 = 0.48
+
+    // Saved and read back at 16 bits, exactly.
+    rgb.save(dir + "/back" + ext);
+    const Image back = Image::load(dir + "/back" + ext);
+    ASSERT_EQ(back.bits(), 16);
+    EXPECT_EQ(std::vector<std::uint8_t>(back.data(), back.data() + back.bytes()),
+              std::vector<std::uint8_t>(rgb.data(), rgb.data() + rgb.bytes()));
+  }
+  // JPEG cannot hold 16 bits: written at 8.
+  Image::load(dir + "/c.png").save(dir + "/c.jpg");
+  EXPECT_EQ(Image::load(dir + "/c.jpg").bits(), 8);
+  // A floating-point TIFF becomes 16-bit, [0, 1] -> [0, 65535].
+  cv::Mat f(1, 2, CV_32FC1);
+  f.at<float>(0, 0) = 0.25f;
+  f.at<float>(0, 1) = 2.0f;  // saturates
+  ASSERT_TRUE(cv::imwrite(dir + "/f.tif", f));
+  const Image fl = Image::load(dir + "/f.tif");
+  ASSERT_EQ(fl.bits(), 16);
+  EXPECT_NEAR(fl.pixel16(0, 0)[0], 0.25 * 65535, 1);
+  EXPECT_EQ(fl.pixel16(1, 0)[0], 65535);
+  // An 8-bit PNG stays 8-bit.
+  cv::Mat e(1, 1, CV_8UC1, cv::Scalar(7));
+  ASSERT_TRUE(cv::imwrite(dir + "/e.png", e));
+  EXPECT_EQ(Image::load(dir + "/e.png").bits(), 8);
+}
+
+namespace {
+// A 32x16 grey JPEG of four 16x8 quadrants (TL 20, TR 80, BL 160, BR 240),
+// block-aligned so JPEG keeps each close to its value, with an Exif APP1
+// segment holding only the orientation tag (0x0112) = `orientation`,
+// inserted right after SOI as cameras write it.
+std::string jpeg_with_orientation(const std::string& dir, int orientation) {
+  cv::Mat m(16, 32, CV_8UC1);
+  for (int y = 0; y < 16; ++y)
+    for (int x = 0; x < 32; ++x)
+      m.at<std::uint8_t>(y, x) = std::uint8_t(y < 8 ? (x < 16 ? 20 : 80) : (x < 16 ? 160 : 240));
+  std::vector<std::uint8_t> jpeg;
+  EXPECT_TRUE(cv::imencode(".jpg", m, jpeg, {cv::IMWRITE_JPEG_QUALITY, 100}));
+  // TIFF little-endian: header (8) + IFD count (2) + one entry (12) + next IFD (4).
+  std::vector<std::uint8_t> tiff = {
+      'I', 'I', 42, 0, 8, 0, 0, 0, 1, 0, 0x12, 0x01, 3, 0, 1, 0, 0, 0, std::uint8_t(orientation),
+      0,   0,   0,  0, 0, 0, 0};
+  std::vector<std::uint8_t> app1 = {0xFF, 0xE1, 0, 0, 'E', 'x', 'i', 'f', 0, 0};
+  app1.insert(app1.end(), tiff.begin(), tiff.end());
+  const std::size_t length = app1.size() - 2;  // the length counts itself, not the marker
+  app1[2] = std::uint8_t(length >> 8);
+  app1[3] = std::uint8_t(length & 0xFF);
+  jpeg.insert(jpeg.begin() + 2, app1.begin(), app1.end());
+  const std::string path = dir + "/o" + std::to_string(orientation) + ".jpg";
+  std::ofstream(path, std::ios::binary)
+      .write(reinterpret_cast<const char*>(jpeg.data()), std::streamsize(jpeg.size()));
+  return path;
+}
+
+// The stored pixel that EXIF orientation n shows at (x, y) of the turned
+// image, for a stored image W x H (TIFF 6.0 / Exif 2.3 tag 274).
+std::pair<int, int> stored_pixel(int n, int x, int y, int W, int H) {
+  switch (n) {
+    case 1:
+      return {x, y};  // as stored
+    case 2:
+      return {W - 1 - x, y};  // mirrored left-right
+    case 3:
+      return {W - 1 - x, H - 1 - y};  // turned 180
+    case 4:
+      return {x, H - 1 - y};  // mirrored top-bottom
+    case 5:
+      return {y, x};  // transposed
+    case 6:
+      return {y, H - 1 - x};  // turned 90 clockwise
+    case 7:
+      return {W - 1 - y, H - 1 - x};  // transversed
+    case 8:
+      return {W - 1 - y, x};  // turned 90 anticlockwise
+  }
+  return {-1, -1};
+}
+}  // namespace
+
+TEST(Image, ExifOrientationAllEightTagsStoredOrTurned) {
+  const std::string dir = test::temp_dir("image_exif");
+  const int W = 32, H = 16;
+  for (int n = 1; n <= 8; ++n) {
+    const std::string path = jpeg_with_orientation(dir, n);
+    const Image stored = Image::load(path);  // the default: as stored
+    ASSERT_EQ(stored.width(), W) << n;
+    ASSERT_EQ(stored.height(), H) << n;
+    const Image turned = Image::load(path, ImageOrientation::exif);
+    const bool swaps = n >= 5;
+    ASSERT_EQ(turned.width(), swaps ? H : W) << n;
+    ASSERT_EQ(turned.height(), swaps ? W : H) << n;
+    // Every pixel of the turned image is the stored pixel the tag names.
+    int worst = 0;
+    for (int y = 0; y < turned.height(); ++y)
+      for (int x = 0; x < turned.width(); ++x) {
+        const auto [sx, sy] = stored_pixel(n, x, y, W, H);
+        worst = std::max(worst, std::abs(int(turned.pixel(x, y)[0]) - int(stored.pixel(sx, sy)[0])));
+      }
+    EXPECT_LE(worst, 0) << "orientation " << n;
+    // And the quadrants are where the tag says (not a symmetric accident).
+    const auto [qx, qy] = stored_pixel(n, 0, 0, W, H);
+    EXPECT_NEAR(turned.pixel(0, 0)[0], qy < 8 ? (qx < 16 ? 20 : 80) : (qx < 16 ? 160 : 240), 3) << n;
+  }
+  // The cache keeps the two readings apart.
+  ImageCache cache;
+  const std::string p6 = dir + "/o6.jpg";
+  EXPECT_EQ(cache.get(p6)->width(), W);
+  EXPECT_EQ(cache.get(p6, ImageOrientation::exif)->width(), H);
+  EXPECT_EQ(cache.get(p6)->width(), W);
+  EXPECT_EQ(cache.loads(), 2u);
 }
 
 TEST(Image, MissingAndUndecodableFiles) {
@@ -140,4 +289,42 @@ TEST(ImageCache, ManyThreads) {
   for (auto& th : threads) th.join();
   EXPECT_EQ(failures.load(), 0);
   EXPECT_LE(cache.bytes_held(), 3 * img.bytes());
+}
+
+// A tool that computed on the photo turned by its EXIF tag (a portrait photo
+// stored landscape) gave its camera the turned size: Scene::image and
+// load_view_image read the photo turned exactly then, and only then.
+TEST(Image, SceneTurnsAStoredPhotoOnItsSideByItsExifTag) {
+  const std::string dir = test::temp_dir("image_exif_scene");
+  const std::string p6 = jpeg_with_orientation(dir, 6), p1 = jpeg_with_orientation(dir, 1);
+  Scene scene;
+  View v;
+  v.label = "portrait";
+  v.camera = test::centred_camera(20, 16, 32);  // the turned size
+  v.image_path = p6;
+  scene.views.push_back(v);
+  v.label = "landscape";
+  v.camera = test::centred_camera(20, 32, 16);  // the stored size
+  scene.views.push_back(v);
+  v.label = "untagged";
+  v.camera = test::centred_camera(20, 16, 32);
+  v.image_path = p1;
+  scene.views.push_back(v);
+
+  const Image turned = Image::load(p6, ImageOrientation::exif);
+  const auto same = [](const Image& a, const Image& b) {
+    return a.width() == b.width() && a.height() == b.height() &&
+           std::equal(a.data(), a.data() + a.bytes(), b.data());
+  };
+  EXPECT_TRUE(same(*scene.image(0), turned));
+  EXPECT_TRUE(same(*load_view_image(scene.views[0]), turned));
+  EXPECT_TRUE(same(*scene.image(1), Image::load(p6)));
+  // No tag to turn it by: refused, saying so.
+  MESHNBV_EXPECT_ERROR_CONTAINS(
+      scene.image(2),
+      "image is 32x16 but its camera says 16x32 (turned by its EXIF orientation it is still 32x16)");
+  MESHNBV_EXPECT_ERROR_CONTAINS(load_view_image(scene.views[2]), "still 32x16");
+  // Asked for explicitly, the EXIF reading is used as it is.
+  scene.views[1].orientation = ImageOrientation::exif;
+  MESHNBV_EXPECT_ERROR_CONTAINS(scene.image(1), "image is 16x32 but its camera says 32x16");
 }

@@ -35,10 +35,13 @@ TEST(JsonScene, RoundTrip) {
   scene.views[2].camera.k1 = -0.05;  // JSON keeps distortion
   scene.views[3].used = false;
   scene.views[0].image_path = dir + "/images/a.png";
+  scene.views[0].orientation = ImageOrientation::exif;
   io::write_scene(scene, dir + "/s.json");
   const Scene back = io::read_json_scene(dir + "/s.json");
   expect_same_cameras(scene, back, 1e-12);
   EXPECT_FALSE(back.views[3].used);
+  EXPECT_EQ(back.views[0].orientation, ImageOrientation::exif);
+  EXPECT_EQ(back.views[1].orientation, ImageOrientation::stored);
   EXPECT_TRUE(back.views[0].has_image());
   EXPECT_FALSE(back.views[1].has_image());
   EXPECT_EQ(back.mesh.num_faces(), scene.mesh.num_faces());
@@ -58,6 +61,11 @@ TEST(JsonScene, Errors) {
   std::ofstream(dir + "/type.json")
       << R"({"format":"meshnbv-scene","version":1,"views":[{"camera":{"width":10,"height":10,"fx":"a","fy":5,"cx":5,"cy":5,"R":[[1,0,0],[0,1,0],[0,0,1]],"t":[0,0,0]}}]})";
   MESHNBV_EXPECT_ERROR_CONTAINS(io::read_json_scene(dir + "/type.json"), "\"fx\" must be a number");
+  std::ofstream(dir + "/turn.json")
+      << R"({"format":"meshnbv-scene","version":1,"views":[{"image_orientation":"rotated","camera":{"width":10,"height":10,"fx":5,"fy":5,"cx":5,"cy":5,"R":[[1,0,0],[0,1,0],[0,0,1]],"t":[0,0,0]}}]})";
+  MESHNBV_EXPECT_ERROR_CONTAINS(
+      io::read_json_scene(dir + "/turn.json"),
+      "view 0: \"image_orientation\" must be \"stored\" or \"exif\", not \"rotated\"");
 }
 
 TEST(SceneIo, DetectsFormats) {

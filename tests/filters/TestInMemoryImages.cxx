@@ -2,8 +2,9 @@
 // - vtkMeshNBVPRIFilter on view blocks that carry pixels and no ImagePath,
 //   after the project's image files are deleted, gives bitwise the PRI and
 //   PRIViews of meshnbv::compute_pri on the same images read from files
-//   (SSD grey and NCC colour); so do 16-bit (unsigned short, v * 257) and
-//   RGBA (4 components) pixels. Other scalar types and pixels whose size
+//   (SSD grey and NCC colour); so do RGBA (4 components) pixels, and
+//   16-bit ones (unsigned short, v * 257, kept at 16 bits) give bitwise the
+//   core's PRI on 16-bit images of those values. Other scalar types and pixels whose size
 //   differs from the camera's are clear errors.
 // - vtkMeshNBVNextBestViewFilter counts such blocks as existing views (no
 //   image path needed): the same suggestions as from the reader's views.
@@ -135,6 +136,23 @@ int TestInMemoryImages(int argc, char* argv[])
   nccColour.color = true;
   const meshnbv::PriResult ssdFiles = meshnbv::compute_pri(scene);
   const meshnbv::PriResult nccFiles = meshnbv::compute_pri(scene, nccColour);
+  // The same photos at 16 bits (v * 257), in memory, built here.
+  meshnbv::Scene scene16 = scene;
+  for (std::size_t i = 0; i < scene16.views.size(); ++i)
+  {
+    const auto eight = scene.image(i);
+    meshnbv::Image wide(eight->width(), eight->height(), eight->channels(), 16);
+    for (int y = 0; y < wide.height(); ++y)
+    {
+      for (int x = 0; x < wide.width() * wide.channels(); ++x)
+      {
+        wide.pixel16(0, y)[x] = static_cast<std::uint16_t>(eight->pixel(0, y)[x] * 257);
+      }
+    }
+    scene16.views[i].pixels = std::make_shared<const meshnbv::Image>(std::move(wide));
+    scene16.views[i].image_path.clear();
+  }
+  const meshnbv::PriResult ssd16 = meshnbv::compute_pri(scene16);
 
   vtkNew<vtkMeshNBVSceneReader> reader;
   reader->SetFileName(projectFile.c_str());
@@ -161,7 +179,7 @@ int TestInMemoryImages(int argc, char* argv[])
               << " observed faces, PRI bitwise equal to the core's from files\n";
   }
 
-  // 2. 16-bit pixels (v * 257 scales back to v exactly) and RGBA.
+  // 2. 16-bit pixels (kept at 16 bits) and RGBA (alpha dropped).
   auto sixteen = PixelsOnly(readerViews, [](vtkUnsignedCharArray* a) {
     auto b = vtkSmartPointer<vtkUnsignedShortArray>::New();
     b->SetNumberOfComponents(a->GetNumberOfComponents());
@@ -191,7 +209,9 @@ int TestInMemoryImages(int argc, char* argv[])
   {
     const FilterPri r = RunPri(mesh, views, false);
     MESHNBV_CHECK(r.Errors.empty(), name << ": " << r.Errors);
-    MESHNBV_CHECK(SameBits(r.Pri, ssdFiles.pri), name << ": PRI differs from the core's on files");
+    const bool wide = std::string(name) == "unsigned short";
+    MESHNBV_CHECK(SameBits(r.Pri, wide ? ssd16.pri : ssdFiles.pri),
+      name << ": PRI differs from the core's on the same " << (wide ? "16-bit images" : "files"));
     std::cout << name << " pixels: PRI bitwise equal\n";
   }
 

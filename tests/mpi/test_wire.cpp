@@ -32,6 +32,16 @@ TEST(Wire, SceneRoundTripGivesTheSamePri) {
   s.views[3].used = false;
   s.views[1].camera.k1 = -0.02;
   s.views[1].camera.skew = 0.5;
+  s.views[3].orientation = ImageOrientation::exif;
+  {  // view 2 at 16 bits
+    const Image& e = *s.views[2].pixels;
+    Image w(e.width(), e.height(), e.channels(), 16);
+    for (int y = 0; y < e.height(); ++y)
+      for (int x = 0; x < e.width(); ++x)
+        for (int c = 0; c < e.channels(); ++c)
+          w.pixel16(x, y)[c] = std::uint16_t(e.pixel(x, y)[c] * 257 + (x & 7));
+    s.views[2].pixels = std::make_shared<const Image>(std::move(w));
+  }
   const std::string bytes = mpi::write_scene(s);
   const Scene r = mpi::read_scene(bytes);
   ASSERT_EQ(r.mesh.vertices, s.mesh.vertices);
@@ -41,6 +51,7 @@ TEST(Wire, SceneRoundTripGivesTheSamePri) {
     EXPECT_EQ(r.views[i].label, s.views[i].label);
     EXPECT_EQ(r.views[i].image_path, s.views[i].image_path);
     EXPECT_EQ(r.views[i].used, s.views[i].used);
+    EXPECT_EQ(r.views[i].orientation, s.views[i].orientation);
     EXPECT_EQ(pri_view_key(r, i), pri_view_key(s, i)) << i;  // camera and pixels, every bit
   }
   EXPECT_EQ(mpi::write_scene(r), bytes);
@@ -89,7 +100,8 @@ TEST(Wire, TruncatedOrForeignMessagesAreErrors) {
   const std::string scene = mpi::write_scene(s), options = mpi::write_pri_options({});
   for (std::size_t n = 0; n < options.size(); ++n)
     EXPECT_THROW(mpi::read_pri_options(options.substr(0, n)), Error) << n;
-  for (std::size_t n = 0; n < scene.size(); n += 97) EXPECT_THROW(mpi::read_scene(scene.substr(0, n)), Error) << n;
+  for (std::size_t n = 0; n < scene.size(); n += 97)
+    EXPECT_THROW(mpi::read_scene(scene.substr(0, n)), Error) << n;
   EXPECT_THROW(mpi::read_scene(scene + "x"), Error);
   EXPECT_THROW(mpi::read_scene(options), Error);
   EXPECT_THROW(mpi::read_pri_options(scene), Error);
@@ -128,5 +140,6 @@ TEST(Wire, ScoreJobRoundTrip) {
   EXPECT_EQ(back[0].total, 10);
   EXPECT_EQ(back[1].occlusion, -10);
   EXPECT_THROW(mpi::read_energies(bytes), Error);
-  for (std::size_t n = 0; n < bytes.size(); n += 1013) EXPECT_THROW(mpi::read_score_job(bytes.substr(0, n)), Error);
+  for (std::size_t n = 0; n < bytes.size(); n += 1013)
+    EXPECT_THROW(mpi::read_score_job(bytes.substr(0, n)), Error);
 }

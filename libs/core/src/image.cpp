@@ -1,9 +1,12 @@
 #include "meshnbv/image.h"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <cctype>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
-
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
@@ -12,49 +15,89 @@
 
 namespace meshnbv {
 
-Image::Image(int width, int height, int channels)
-    : width_(width), height_(height), channels_(channels) {
-  if (width <= 0 || height <= 0 || (channels != 1 && channels != 3))
-    throw Error("invalid image size " + std::to_string(width) + "x" + std::to_string(height) +
-                "x" + std::to_string(channels));
-  data_.assign(std::size_t(width) * height * channels, 0);
+Image::Image(int width, int height, int channels, int bits)
+    : width_(width), height_(height), channels_(channels), bits_(bits) {
+  if (width <= 0 || height <= 0 || (channels != 1 && channels != 3) || (bits != 8 && bits != 16))
+    throw Error("invalid image size " + std::to_string(width) + "x" + std::to_string(height) + "x" +
+                std::to_string(channels) + " at " + std::to_string(bits) + " bits");
+  const std::size_t n = std::size_t(width) * height * channels;
+  if (bits == 16)
+    data16_.assign(n, 0);
+  else
+    data_.assign(n, 0);
 }
 
-Image Image::load(const std::string& path) {
+Image Image::load(const std::string& path, ImageOrientation orientation) {
   std::error_code ec;
   if (!std::filesystem::exists(path, ec)) throw Error("image file not found", path);
+  // Any depth, grey or colour as stored (colour without its alpha); the
+  // EXIF orientation applied or not as asked.
+  int flags = cv::IMREAD_ANYDEPTH | cv::IMREAD_ANYCOLOR;
+  if (orientation == ImageOrientation::stored) flags |= cv::IMREAD_IGNORE_ORIENTATION;
   cv::Mat mat;
   try {
-    mat = cv::imread(path, cv::IMREAD_UNCHANGED | cv::IMREAD_ANYDEPTH);
+    mat = cv::imread(path, flags);
   } catch (const cv::Exception& e) {
     throw Error(std::string("image does not decode: ") + e.what(), path);
   }
   if (mat.empty()) throw Error("image does not decode (unknown or corrupt format)", path);
-  if (mat.depth() != CV_8U) {
-    // 16-bit (or float) images: scale to 8 bits by the type's range.
-    double scale = mat.depth() == CV_16U ? 1.0 / 257.0 : (mat.depth() == CV_32F ? 255.0 : 1.0);
+  int bits = 8;
+  if (mat.depth() == CV_16U) {
+    bits = 16;
+  } else if (mat.depth() != CV_8U) {
+    // Floating-point (and other) images: to 16 bits, [0, 1] -> [0, 65535]
+    // for floats, saturated.
+    const double scale = (mat.depth() == CV_32F || mat.depth() == CV_64F) ? 65535.0 : 1.0;
     cv::Mat converted;
-    mat.convertTo(converted, CV_8U, scale);
+    mat.convertTo(converted, CV_16U, scale);
     mat = converted;
+    bits = 16;
   }
   cv::Mat out;
   switch (mat.channels()) {
-    case 1: out = mat; break;
-    case 3: cv::cvtColor(mat, out, cv::COLOR_BGR2RGB); break;
-    case 4: cv::cvtColor(mat, out, cv::COLOR_BGRA2RGB); break;
+    case 1:
+      out = mat;
+      break;
+    case 2:
+      cv::extractChannel(mat, out, 0);
+      break;  // grey + alpha
+    case 3:
+      cv::cvtColor(mat, out, cv::COLOR_BGR2RGB);
+      break;
+    case 4:
+      cv::cvtColor(mat, out, cv::COLOR_BGRA2RGB);
+      break;
     default:
       throw Error("unsupported channel count " + std::to_string(mat.channels()), path);
   }
-  Image image(out.cols, out.rows, out.channels());
-  const std::size_t row_bytes = std::size_t(out.cols) * out.channels();
-  for (int y = 0; y < out.rows; ++y) std::memcpy(image.pixel(0, y), out.ptr(y), row_bytes);
+  Image image(out.cols, out.rows, out.channels(), bits);
+  const std::size_t row_bytes = std::size_t(out.cols) * out.channels() * (bits / 8);
+  for (int y = 0; y < out.rows; ++y) {
+    void* dst = bits == 16 ? static_cast<void*>(image.pixel16(0, y)) : static_cast<void*>(image.pixel(0, y));
+    std::memcpy(dst, out.ptr(y), row_bytes);
+  }
   return image;
+}
+
+Image Image::to_8bit() const {
+  if (bits_ == 8 || empty()) return *this;
+  Image out(width_, height_, channels_, 8);
+  for (std::size_t i = 0; i < data16_.size(); ++i)
+    out.data_[i] = static_cast<std::uint8_t>((unsigned(data16_[i]) + 128u) / 257u);
+  return out;
 }
 
 void Image::save(const std::string& path) const {
   if (empty()) throw Error("cannot save an empty image", path);
-  cv::Mat mat(height_, width_, channels_ == 1 ? CV_8UC1 : CV_8UC3,
-              const_cast<std::uint8_t*>(data_.data()));
+  std::string ext = std::filesystem::path(path).extension().string();
+  for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+  const bool keeps_16 = ext == ".png" || ext == ".tif" || ext == ".tiff";
+  if (bits_ == 16 && !keeps_16) {
+    to_8bit().save(path);
+    return;
+  }
+  const int depth = bits_ == 16 ? CV_16U : CV_8U;
+  cv::Mat mat(height_, width_, CV_MAKETYPE(depth, channels_), const_cast<std::uint8_t*>(data()));
   cv::Mat out;
   if (channels_ == 3)
     cv::cvtColor(mat, out, cv::COLOR_RGB2BGR);
@@ -71,10 +114,12 @@ void Image::save(const std::string& path) const {
 
 namespace {
 constexpr float kInv255 = 1.0f / 255.0f;
+constexpr float kInv65535 = 1.0f / 65535.0f;
 
-inline float luma(const std::uint8_t* p, int channels) {
-  if (channels == 1) return p[0] * kInv255;
-  return (0.299f * p[0] + 0.587f * p[1] + 0.114f * p[2]) * kInv255;
+template <typename T>
+inline float luma(const T* p, int channels, float inv) {
+  if (channels == 1) return p[0] * inv;
+  return (0.299f * p[0] + 0.587f * p[1] + 0.114f * p[2]) * inv;
 }
 
 // Integer cell and weights for bilinear sampling on [0, n-1]; false outside.
@@ -89,29 +134,45 @@ inline bool cell(double x, int n, int* x0, int* x1, float* w) {
 }
 }  // namespace
 
-float Image::luminance(int x, int y) const { return luma(pixel(x, y), channels_); }
+float Image::value(int x, int y, int c) const {
+  const int k = channels_ == 1 ? 0 : c;
+  return bits_ == 16 ? pixel16(x, y)[k] * kInv65535 : pixel(x, y)[k] * kInv255;
+}
+
+float Image::luminance(int x, int y) const {
+  return bits_ == 16 ? luma(pixel16(x, y), channels_, kInv65535) : luma(pixel(x, y), channels_, kInv255);
+}
 
 bool Image::sample_luminance(double x, double y, float* out) const {
   int x0, x1, y0, y1;
   float wx, wy;
   if (!cell(x, width_, &x0, &x1, &wx) || !cell(y, height_, &y0, &y1, &wy)) return false;
-  const float a = luma(pixel(x0, y0), channels_), b = luma(pixel(x1, y0), channels_);
-  const float c = luma(pixel(x0, y1), channels_), d = luma(pixel(x1, y1), channels_);
+  const float a = luminance(x0, y0), b = luminance(x1, y0);
+  const float c = luminance(x0, y1), d = luminance(x1, y1);
   *out = (1 - wy) * ((1 - wx) * a + wx * b) + wy * ((1 - wx) * c + wx * d);
   return true;
 }
+
+namespace {
+template <typename T>
+void bilinear_rgb(const T* a, const T* b, const T* c, const T* d, int channels, float wx, float wy, float inv,
+                  float out[3]) {
+  for (int ch = 0; ch < 3; ++ch) {
+    const int k = channels == 1 ? 0 : ch;
+    out[ch] = ((1 - wy) * ((1 - wx) * a[k] + wx * b[k]) + wy * ((1 - wx) * c[k] + wx * d[k])) * inv;
+  }
+}
+}  // namespace
 
 bool Image::sample_rgb(double x, double y, float out[3]) const {
   int x0, x1, y0, y1;
   float wx, wy;
   if (!cell(x, width_, &x0, &x1, &wx) || !cell(y, height_, &y0, &y1, &wy)) return false;
-  const std::uint8_t *a = pixel(x0, y0), *b = pixel(x1, y0), *c = pixel(x0, y1),
-                     *d = pixel(x1, y1);
-  for (int ch = 0; ch < 3; ++ch) {
-    const int k = channels_ == 1 ? 0 : ch;
-    out[ch] = ((1 - wy) * ((1 - wx) * a[k] + wx * b[k]) + wy * ((1 - wx) * c[k] + wx * d[k])) *
-              kInv255;
-  }
+  if (bits_ == 16)
+    bilinear_rgb(pixel16(x0, y0), pixel16(x1, y0), pixel16(x0, y1), pixel16(x1, y1), channels_, wx, wy,
+                 kInv65535, out);
+  else
+    bilinear_rgb(pixel(x0, y0), pixel(x1, y0), pixel(x0, y1), pixel(x1, y1), channels_, wx, wy, kInv255, out);
   return true;
 }
 
@@ -121,9 +182,12 @@ FloatImage FloatImage::luminance_of(const Image& image) {
   out.height_ = image.height();
   out.channels_ = 1;
   out.data_.resize(std::size_t(out.width_) * out.height_);
-  for (int y = 0; y < out.height_; ++y)
-    for (int x = 0; x < out.width_; ++x)
-      out.data_[std::size_t(y) * out.width_ + x] = image.luminance(x, y);
+  tbb::parallel_for(tbb::blocked_range<int>(0, out.height_, 16), [&](const tbb::blocked_range<int>& r) {
+    for (int y = r.begin(); y < r.end(); ++y) {
+      float* row = &out.data_[std::size_t(y) * out.width_];
+      for (int x = 0; x < out.width_; ++x) row[x] = image.luminance(x, y);
+    }
+  });
   return out;
 }
 
@@ -133,11 +197,12 @@ FloatImage FloatImage::rgb_of(const Image& image) {
   out.height_ = image.height();
   out.channels_ = 3;
   out.data_.resize(std::size_t(out.width_) * out.height_ * 3);
-  for (int y = 0; y < out.height_; ++y)
-    for (int x = 0; x < out.width_; ++x)
-      for (int c = 0; c < 3; ++c)
-        out.data_[(std::size_t(y) * out.width_ + x) * 3 + c] =
-            image.pixel(x, y)[image.channels() == 1 ? 0 : c] * kInv255;
+  tbb::parallel_for(tbb::blocked_range<int>(0, out.height_, 16), [&](const tbb::blocked_range<int>& r) {
+    for (int y = r.begin(); y < r.end(); ++y)
+      for (int x = 0; x < out.width_; ++x)
+        for (int c = 0; c < 3; ++c)
+          out.data_[(std::size_t(y) * out.width_ + x) * 3 + c] = image.value(x, y, c);
+  });
   return out;
 }
 
@@ -157,23 +222,25 @@ bool FloatImage::sample(double x, double y, float* out) const {
 
 ImageCache::ImageCache(std::size_t max_bytes) : max_bytes_(max_bytes) {}
 
-std::shared_ptr<const Image> ImageCache::get(const std::string& path) {
+std::shared_ptr<const Image> ImageCache::get(const std::string& path, ImageOrientation orientation) {
+  // The key: the path, and for the EXIF orientation a suffix no path holds.
+  const std::string key = orientation == ImageOrientation::exif ? path + std::string("\0exif", 5) : path;
   {
     std::lock_guard<std::mutex> lock(mutex_);
-    auto it = entries_.find(path);
+    auto it = entries_.find(key);
     if (it != entries_.end()) {
       lru_.splice(lru_.begin(), lru_, it->second.lru_position);
       return it->second.image;
     }
   }
   // Decode outside the lock so that threads load different images in parallel.
-  auto image = std::make_shared<const Image>(Image::load(path));
+  auto image = std::make_shared<const Image>(Image::load(path, orientation));
   std::lock_guard<std::mutex> lock(mutex_);
   ++loads_;
-  auto it = entries_.find(path);
+  auto it = entries_.find(key);
   if (it != entries_.end()) return it->second.image;  // another thread won the race
-  lru_.push_front(path);
-  entries_[path] = Entry{image, lru_.begin()};
+  lru_.push_front(key);
+  entries_[key] = Entry{image, lru_.begin()};
   bytes_ += image->bytes();
   evict_locked();
   return image;

@@ -383,6 +383,7 @@ std::uint64_t pri_view_key(const Scene& scene, std::size_t view) {
   if (v.pixels) {
     const Image& im = *v.pixels;
     h = combine(h, std::uint64_t(im.width()) << 40 ^ std::uint64_t(im.height()) << 8 ^ std::uint64_t(im.channels()));
+    if (im.bits() != 8) h = combine(h, std::uint64_t(im.bits()));
     const std::uint8_t* d = im.data();
     std::size_t k = 0;
     for (; k + 8 <= im.bytes(); k += 8) {
@@ -394,6 +395,7 @@ std::uint64_t pri_view_key(const Scene& scene, std::size_t view) {
     return h;
   }
   h = combine(h, v.image_path);
+  if (v.orientation != ImageOrientation::stored) h = combine(h, std::uint64_t(v.orientation));
   std::error_code ec;
   const auto size = std::filesystem::file_size(v.image_path, ec);
   if (!ec) h = combine(h, std::uint64_t(size));

@@ -13,6 +13,31 @@ void check_one_source(const View& view) {
                 view.image_path, -1, "view '" + view.label + "'");
 }
 
+// A file-backed view's photo through `get(orientation)`, checked against its
+// camera's size; a stored photo lying on its side is tried turned by its
+// EXIF tag.
+template <class Get>
+std::shared_ptr<const Image> file_image(const View& view, Get get) {
+  auto img = get(view.orientation);
+  const auto fits = [&](const Image& im) {
+    return im.width() == view.camera.width && im.height() == view.camera.height;
+  };
+  if (fits(*img)) return img;
+  std::string note;
+  if (view.orientation == ImageOrientation::stored && img->width() == view.camera.height &&
+      img->height() == view.camera.width) {
+    // Stored on its side: the tool saw the photo turned by its EXIF tag.
+    auto turned = get(ImageOrientation::exif);
+    if (fits(*turned)) return turned;
+    note = " (turned by its EXIF orientation it is still " + std::to_string(turned->width()) + "x" +
+           std::to_string(turned->height()) + ")";
+  }
+  throw Error("image is " + std::to_string(img->width()) + "x" + std::to_string(img->height()) +
+                  " but its camera says " + std::to_string(view.camera.width) + "x" +
+                  std::to_string(view.camera.height) + note,
+              view.image_path, -1, "view '" + view.label + "'");
+}
+
 }  // namespace
 
 const std::string& View::image_file(const std::string& purpose) const {
@@ -28,13 +53,22 @@ std::shared_ptr<const Image> Scene::image(std::size_t i) const {
   const View& view = views[i];
   if (!view.has_image()) throw Error("view '" + view.label + "' has no image");
   check_one_source(view);
-  auto img = view.pixels ? view.pixels : images->get(view.image_path);
-  if (img->width() != view.camera.width || img->height() != view.camera.height)
-    throw Error((view.pixels ? "in-memory image is " : "image is ") + std::to_string(img->width()) +
-                    "x" + std::to_string(img->height()) + " but its camera says " +
-                    std::to_string(view.camera.width) + "x" + std::to_string(view.camera.height),
-                view.image_path, -1, "view '" + view.label + "'");
-  return img;
+  if (!view.pixels)
+    return file_image(view, [&](ImageOrientation o) { return images->get(view.image_path, o); });
+  const Image& im = *view.pixels;
+  if (im.width() != view.camera.width || im.height() != view.camera.height)
+    throw Error("in-memory image is " + std::to_string(im.width()) + "x" + std::to_string(im.height()) +
+                    " but its camera says " + std::to_string(view.camera.width) + "x" +
+                    std::to_string(view.camera.height),
+                {}, -1, "view '" + view.label + "'");
+  return view.pixels;
+}
+
+std::shared_ptr<const Image> load_view_image(const View& view) {
+  if (view.image_path.empty()) throw Error("view '" + view.label + "' has no image file");
+  return file_image(view, [&](ImageOrientation o) {
+    return std::make_shared<const Image>(Image::load(view.image_path, o));
+  });
 }
 
 std::size_t Scene::num_views_with_image() const {
@@ -74,7 +108,8 @@ ReprojectionStats reprojection_error(const Scene& scene) {
   std::nth_element(errors.begin(), errors.begin() + std::ptrdiff_t(mid), errors.end());
   stats.median = errors[mid];
   if (errors.size() % 2 == 0)
-    stats.median = 0.5 * (stats.median + *std::max_element(errors.begin(), errors.begin() + std::ptrdiff_t(mid)));
+    stats.median =
+        0.5 * (stats.median + *std::max_element(errors.begin(), errors.begin() + std::ptrdiff_t(mid)));
   return stats;
 }
 
@@ -86,9 +121,10 @@ MeshViewCoverage mesh_view_coverage(const Scene& scene) {
   const std::size_t step = (n + kMaxFaces - 1) / kMaxFaces;
   for (std::size_t f = 0; f < n; f += step) {
     const Face& face = scene.mesh.faces[f];
-    const Vec3 centroid = (scene.mesh.vertices[std::size_t(face[0])] +
-                           scene.mesh.vertices[std::size_t(face[1])] +
-                           scene.mesh.vertices[std::size_t(face[2])]) / 3.0;
+    const Vec3 centroid =
+        (scene.mesh.vertices[std::size_t(face[0])] + scene.mesh.vertices[std::size_t(face[1])] +
+         scene.mesh.vertices[std::size_t(face[2])]) /
+        3.0;
     ++c.faces_checked;
     for (const View& v : scene.views) {
       Vec2 px;
@@ -105,8 +141,8 @@ std::string mesh_frame_warning(const Scene& scene) {
   const MeshViewCoverage c = mesh_view_coverage(scene);
   if (c.faces_checked == 0 || c.share() >= 0.5) return {};
   const int percent = int(100.0 * c.share());
-  return "only " + std::to_string(percent) + "% of the mesh's faces (" +
-         std::to_string(c.faces_in_view) + " of " + std::to_string(c.faces_checked) +
+  return "only " + std::to_string(percent) + "% of the mesh's faces (" + std::to_string(c.faces_in_view) +
+         " of " + std::to_string(c.faces_checked) +
          " checked) lie inside any camera's view: the mesh is probably in another coordinate "
          "frame than the cameras (exported from another model or chunk, or in a projected CRS)";
 }

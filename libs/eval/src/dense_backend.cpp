@@ -2,6 +2,8 @@
 // semi-global matching), geometric consistency across pairs, voxel fusion.
 #include "meshnbv/eval/dense_backend.h"
 
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <array>
 #include <atomic>
@@ -11,14 +13,12 @@
 #include <filesystem>
 #include <map>
 #include <mutex>
-#include <sstream>
-#include <unordered_map>
-
 #include <opencv2/calib3d.hpp>
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
-#include <tbb/parallel_for.h>
+#include <sstream>
+#include <unordered_map>
 
 #include "meshnbv/enum_names.h"
 #include "meshnbv/error.h"
@@ -54,11 +54,9 @@ void DenseOptions::check() const {
                min_texture);
   check_option(min_agreeing >= 1 && min_agreeing <= partners, "dense min_agreeing", "in [1, partners]",
                min_agreeing);
-  check_option(consistency > 0 && consistency <= 100, "dense consistency", "in (0, 100] pixels",
-               consistency);
+  check_option(consistency > 0 && consistency <= 100, "dense consistency", "in (0, 100] pixels", consistency);
   check_option(pixel_step >= 1 && pixel_step <= 64, "dense pixel_step", "in [1, 64]", pixel_step);
-  check_option(max_points >= 100 && max_points <= 100000000, "dense max_points", "in [100, 1e8]",
-               max_points);
+  check_option(max_points >= 100 && max_points <= 100000000, "dense max_points", "in [100, 1e8]", max_points);
 }
 
 PinholeCamera resized_camera(const PinholeCamera& c, int width, int height) {
@@ -97,15 +95,15 @@ cv::Mat grey_mat(const Image& image) {
 // The rectified pair in a canonical orientation: the disparity runs along
 // +a (columns) with the match in `other` at a - d, as StereoSGBM wants.
 struct PairGeometry {
-  Mat3 R1, R2;              // camera -> rectified frame, per camera
-  double fx = 0, fy = 0;    // rectified intrinsics (shared)
+  Mat3 R1, R2;            // camera -> rectified frame, per camera
+  double fx = 0, fy = 0;  // rectified intrinsics (shared)
   double cx1 = 0, cy1 = 0, cx2 = 0, cy2 = 0;
-  double baseline = 0;      // |T| along the rectified axis
+  double baseline = 0;  // |T| along the rectified axis
   // Canonical disparity of a point at depth Z of the rectified frame:
   // f * baseline / Z + offset (the principal points differ along the axis).
   double offset = 0;
-  bool vertical = false;    // the baseline runs along the rectified y axis
-  bool flip = false;        // the other camera lies on the negative side
+  bool vertical = false;  // the baseline runs along the rectified y axis
+  bool flip = false;      // the other camera lies on the negative side
   int rect_w = 0, rect_h = 0;
   int canon_w() const { return vertical ? rect_h : rect_w; }
   int canon_h() const { return vertical ? rect_w : rect_h; }
@@ -152,8 +150,8 @@ PairGeometry rectify(const PinholeCamera& a, const PinholeCamera& b) {
   }
   cv::Mat R1, R2, P1, P2, Q;
   const cv::Mat no_lens = cv::Mat::zeros(1, 5, CV_64F);
-  cv::stereoRectify(Ka, no_lens, Kb, no_lens, cv::Size(a.width, a.height), Rcv, Tcv, R1, R2, P1, P2, Q,
-                    0, -1, cv::Size(a.width, a.height));
+  cv::stereoRectify(Ka, no_lens, Kb, no_lens, cv::Size(a.width, a.height), Rcv, Tcv, R1, R2, P1, P2, Q, 0, -1,
+                    cv::Size(a.width, a.height));
   PairGeometry g;
   g.R1 = from_cv(R1);
   g.R2 = from_cv(R2);
@@ -251,8 +249,9 @@ void sgbm_range(double lo, double hi, int* min_disparity, int* num_disparities) 
   mn = int(std::floor(mn / 8.0)) * 8;
   int count = int(std::ceil(hi)) + 2 - mn;
   count = std::max(16, int(std::ceil(count / 16.0)) * 16);
-  if (count > kMax) throw Error("the depth range spans " + std::to_string(count) +
-                                " pixels of disparity (at most " + std::to_string(kMax) + ")");
+  if (count > kMax)
+    throw Error("the depth range spans " + std::to_string(count) + " pixels of disparity (at most " +
+                std::to_string(kMax) + ")");
   *min_disparity = mn;
   *num_disparities = count;
 }
@@ -264,8 +263,8 @@ DepthMap stereo_depth(const PinholeCamera& ref, const Image& ref_image, const Pi
                       const DenseOptions& options, const std::string& disparity_png,
                       const std::vector<Vec3>& scene_points) {
   if (!(min_depth > 0 && max_depth > min_depth && std::isfinite(max_depth)))
-    throw Error("stereo: empty depth range [" + std::to_string(min_depth) + ", " +
-                std::to_string(max_depth) + "]");
+    throw Error("stereo: empty depth range [" + std::to_string(min_depth) + ", " + std::to_string(max_depth) +
+                "]");
   const PairGeometry g = rectify(ref, other);
   const auto [dlo, dhi] = disparity_range(g, ref, min_depth, max_depth, scene_points);
   int min_disp = 0, num_disp = 0;
@@ -302,9 +301,9 @@ DepthMap stereo_depth(const PinholeCamera& ref, const Image& ref_image, const Pi
     cv::remap(grey_mat(ref_image), c1, mx1, my1, cv::INTER_LINEAR, cv::BORDER_CONSTANT, cv::Scalar(0));
     cv::remap(grey_mat(other_image), c2, mx2, my2, cv::INTER_LINEAR, cv::BORDER_CONSTANT, cv::Scalar(0));
     const int b = options.block_size;
-    cv::Ptr<cv::StereoSGBM> sgbm = cv::StereoSGBM::create(min_disp, num_disp, b, 8 * b * b, 32 * b * b, 1,
-                                                          63, options.uniqueness, 100, 2,
-                                                          cv::StereoSGBM::MODE_SGBM);
+    cv::Ptr<cv::StereoSGBM> sgbm =
+        cv::StereoSGBM::create(min_disp, num_disp, b, 8 * b * b, 32 * b * b, 1, 63, options.uniqueness, 100,
+                               2, cv::StereoSGBM::MODE_SGBM);
     sgbm->compute(c1, c2, disparity);
     // No depth where the reference's window holds no texture (the standard
     // deviation of its grey levels below min_texture): the matcher only
@@ -352,7 +351,8 @@ DepthMap stereo_depth(const PinholeCamera& ref, const Image& ref_image, const Pi
       const int ia2 = int(std::lround(a - d));
       if (d - g.offset <= 0 || ia2 < 0 || ia2 >= cw || !mask2.at<std::uint8_t>(ib, ia2)) continue;
       const double z = g.f() * g.baseline / (d - g.offset) / ray.z();
-      if (z >= min_depth && z <= max_depth) out.depth[std::size_t(y) * std::size_t(ref.width) + std::size_t(x)] = float(z);
+      if (z >= min_depth && z <= max_depth)
+        out.depth[std::size_t(y) * std::size_t(ref.width) + std::size_t(x)] = float(z);
     }
   return out;
 }
@@ -400,8 +400,8 @@ std::string camera_key(const PinholeCamera& c) {
   std::ostringstream ss;
   ss.precision(17);
   ss << c.fx << " " << c.fy << " " << c.cx << " " << c.cy << " " << c.width << " " << c.height << " "
-     << int(c.lens) << " " << c.k1 << " " << c.k2 << " " << c.k3 << " " << c.k4 << " " << c.k5 << " "
-     << c.k6 << " " << c.p1 << " " << c.p2 << " " << c.skew;
+     << int(c.lens) << " " << c.k1 << " " << c.k2 << " " << c.k3 << " " << c.k4 << " " << c.k5 << " " << c.k6
+     << " " << c.p1 << " " << c.p2 << " " << c.skew;
   for (int i = 0; i < 3; ++i) {
     ss << " " << c.t(i);
     for (int j = 0; j < 3; ++j) ss << " " << c.R(i, j);
@@ -439,7 +439,8 @@ std::vector<ViewPlan> plan_views(const std::vector<View>& views, const std::vect
   std::vector<std::vector<std::size_t>> seen_by(views.size());
   for (std::size_t p = 0; p < sparse.size(); ++p)
     for (int v : sparse[p].views)
-      if (v >= 0 && std::size_t(v) < views.size() && is_selected[std::size_t(v)]) seen_by[std::size_t(v)].push_back(p);
+      if (v >= 0 && std::size_t(v) < views.size() && is_selected[std::size_t(v)])
+        seen_by[std::size_t(v)].push_back(p);
   const double deg = 180.0 / M_PI;
   std::vector<ViewPlan> plans;
   for (int r : selected) {
@@ -476,8 +477,9 @@ std::vector<ViewPlan> plan_views(const std::vector<View>& views, const std::vect
       const double w = std::min(1.0, angle / o.target_angle);
       plan.partners.push_back({q, double(a.size()) * w * w});
     }
-    std::sort(plan.partners.begin(), plan.partners.end(),
-              [](const Partner& a, const Partner& b) { return a.score > b.score || (a.score == b.score && a.view < b.view); });
+    std::sort(plan.partners.begin(), plan.partners.end(), [](const Partner& a, const Partner& b) {
+      return a.score > b.score || (a.score == b.score && a.view < b.view);
+    });
     if (int(plan.partners.size()) > o.partners) plan.partners.resize(std::size_t(o.partners));
     if (int(plan.partners.size()) < o.min_agreeing) {
       failures->push_back("view " + vr.label + ": " + std::to_string(plan.partners.size()) +
@@ -500,13 +502,8 @@ class WorkingImages {
       if (it != images_.end()) return it->second;
     }
     const View& view = views_[std::size_t(v)];
-    const Image full = Image::load(view.image_path);
+    const Image full = load_view_image(view)->to_8bit();  // SGBM takes 8 bits
     const cv::Size size = working_size(view.camera, max_size_);
-    if (full.width() != view.camera.width || full.height() != view.camera.height)
-      throw Error("image is " + std::to_string(full.width()) + "x" + std::to_string(full.height()) +
-                      ", its camera " + std::to_string(view.camera.width) + "x" +
-                      std::to_string(view.camera.height),
-                  view.image_path);
     cv::Mat grey = grey_mat(full), small;
     if (size.width != grey.cols || size.height != grey.rows)
       cv::resize(grey, small, size, 0, 0, cv::INTER_AREA);
@@ -529,10 +526,10 @@ class WorkingImages {
 
 // A view's depth map after the consistency check across its pairs.
 struct FusedView {
-  PinholeCamera camera;          // at the working size
-  std::vector<int> partners;     // views of the pairs
-  std::vector<float> depth;      // 0 = none
-  std::vector<float> tolerance;  // consistency tolerance of the depth
+  PinholeCamera camera;                 // at the working size
+  std::vector<int> partners;            // views of the pairs
+  std::vector<float> depth;             // 0 = none
+  std::vector<float> tolerance;         // consistency tolerance of the depth
   std::vector<std::uint32_t> agreeing;  // bit m: partner m agreed
 };
 
@@ -731,8 +728,8 @@ std::vector<SparsePoint> dense_points(const std::vector<View>& views, const std:
           if (dq <= 0) continue;
           // Tolerance: the seen depth's own, and the point's carried over
           // by the ratio of depths (z^2 scaling).
-          const double tol = std::max(double(other.tolerance[qp]),
-                                      double(fv.tolerance[px]) * (zq * zq) / (double(d) * d));
+          const double tol =
+              std::max(double(other.tolerance[qp]), double(fv.tolerance[px]) * (zq * zq) / (double(d) * d));
           if (std::abs(zq - dq) <= tol) {
             ++support;
             fp.views.push_back(plans[j].view);

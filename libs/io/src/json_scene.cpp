@@ -1,15 +1,15 @@
 // Our JSON scene format (schema in docs/formats.md):
 // { "format": "meshnbv-scene", "version": 1, "mesh": "x.ply" | null,
 //   "views": [ { "label": "...", "image": "a.png" | null, "used": true,
+//                optional "image_orientation": "stored" | "exif",
 //                "camera": { "width", "height", "fx", "fy", "cx", "cy", "k1", "k2",
 //                            optional "lens": "brown" | "fisheye", "k3".."k6", "p1", "p2",
 //                            "skew", "R": [[3],[3],[3]], "t": [3] } } ] }
 // Paths are relative to the JSON file; camera in our convention.
 #include <cmath>
 #include <filesystem>
-#include <utility>
-
 #include <nlohmann/json.hpp>
+#include <utility>
 
 #include "meshnbv/error.h"
 #include "meshnbv/io/file_util.h"
@@ -34,9 +34,9 @@ double json_number(const json& j, const char* key, const std::string& file, cons
 int json_image_size(const json& j, const char* key, const std::string& file, const std::string& where) {
   const double v = json_number(j, key, file, where);
   if (!(v >= 1 && v <= (1 << 30) && v == std::floor(v)))
-    throw Error(std::string("\"") + key + "\" must be a whole number of pixels in [1, 2^30], got " +
-                    j.at(key).dump(),
-                file, -1, where);
+    throw Error(
+        std::string("\"") + key + "\" must be a whole number of pixels in [1, 2^30], got " + j.at(key).dump(),
+        file, -1, where);
   return static_cast<int>(v);
 }
 
@@ -46,8 +46,7 @@ int json_image_size(const json& j, const char* key, const std::string& file, con
 std::string optional_string(const json& j, const char* key, const std::string& fallback,
                             const std::string& file, const std::string& where) {
   if (!j.contains(key) || j.at(key).is_null()) return fallback;
-  if (!j.at(key).is_string())
-    throw Error(std::string("\"") + key + "\" must be a string", file, -1, where);
+  if (!j.at(key).is_string()) throw Error(std::string("\"") + key + "\" must be a string", file, -1, where);
   return j.at(key).get<std::string>();
 }
 
@@ -81,9 +80,8 @@ void write_lens(const PinholeCamera& c, json* cam) {
   (*cam)["k1"] = c.k1;
   (*cam)["k2"] = c.k2;
   if (c.lens == LensModel::Fisheye) (*cam)["lens"] = "fisheye";
-  const std::pair<const char*, double> params[] = {{"k3", c.k3}, {"k4", c.k4}, {"k5", c.k5},
-                                                   {"k6", c.k6}, {"p1", c.p1}, {"p2", c.p2},
-                                                   {"skew", c.skew}};
+  const std::pair<const char*, double> params[] = {{"k3", c.k3}, {"k4", c.k4}, {"k5", c.k5},    {"k6", c.k6},
+                                                   {"p1", c.p1}, {"p2", c.p2}, {"skew", c.skew}};
   for (const auto& [key, value] : params)
     if (value != 0.0) (*cam)[key] = value;
 }
@@ -156,6 +154,12 @@ Scene read_json_scene(const std::string& path) {
     const std::string image = optional_string(jv, "image", "", path, where);
     if (!image.empty()) v.image_path = resolve(image, base);
     v.used = optional_bool(jv, "used", true, path, where);
+    const std::string orientation = optional_string(jv, "image_orientation", "stored", path, where);
+    if (orientation == "exif")
+      v.orientation = ImageOrientation::exif;
+    else if (orientation != "stored")
+      throw Error("\"image_orientation\" must be \"stored\" or \"exif\", not \"" + orientation + "\"", path,
+                  -1, where);
     if (!jv.contains("camera")) throw Error("missing \"camera\"", path, -1, where);
     v.camera = camera_from_json(jv["camera"], path, where + " ('" + v.label + "')");
     scene.views.push_back(std::move(v));
@@ -180,10 +184,13 @@ void write_json_scene(const Scene& scene, const std::string& path, const std::st
                 {c.R(1, 0), c.R(1, 1), c.R(1, 2)},
                 {c.R(2, 0), c.R(2, 1), c.R(2, 2)}};
     cam["t"] = {c.t.x(), c.t.y(), c.t.z()};
-    views.push_back({{"label", v.label},
-                     {"image", v.has_image() ? json(relative_to(v.image_file("a JSON scene"), base)) : json(nullptr)},
-                     {"used", v.used},
-                     {"camera", cam}});
+    json jv = {
+        {"label", v.label},
+        {"image", v.has_image() ? json(relative_to(v.image_file("a JSON scene"), base)) : json(nullptr)},
+        {"used", v.used},
+        {"camera", cam}};
+    if (v.orientation == ImageOrientation::exif) jv["image_orientation"] = "exif";
+    views.push_back(std::move(jv));
   }
   doc["views"] = views;
   // JSON text is UTF-8: a label or path that is not (e.g. Latin-1 read from
@@ -201,10 +208,10 @@ void write_json_scene(const Scene& scene, const std::string& path, const std::st
         break;
       }
     }
-    throw Error(what + " is not valid UTF-8, which JSON cannot hold; write .mlp or COLMAP instead",
-                path);
+    throw Error(what + " is not valid UTF-8, which JSON cannot hold; write .mlp or COLMAP instead", path);
   }
-  write_atomically(path, [&](std::ostream& out) { out << text << "\n"; }, overwrite);
+  write_atomically(
+      path, [&](std::ostream& out) { out << text << "\n"; }, overwrite);
 }
 
 }  // namespace meshnbv::io

@@ -114,7 +114,8 @@ void put_camera(Writer& w, const PinholeCamera& c) {
 
 PinholeCamera get_camera(Reader& r) {
   PinholeCamera c;
-  for (double* x : {&c.fx, &c.fy, &c.cx, &c.cy, &c.k1, &c.k2, &c.k3, &c.k4, &c.k5, &c.k6, &c.p1, &c.p2, &c.skew})
+  for (double* x :
+       {&c.fx, &c.fy, &c.cx, &c.cy, &c.k1, &c.k2, &c.k3, &c.k4, &c.k5, &c.k6, &c.p1, &c.p2, &c.skew})
     *x = r.get_finite();
   c.width = r.get<std::int32_t>();
   c.height = r.get<std::int32_t>();
@@ -138,7 +139,8 @@ std::vector<Vec3> get_points(Reader& r) {
   const std::vector<double> xyz = r.get_vector<double>();
   if (xyz.size() % 3) r.fail("coordinates are not triples");
   std::vector<Vec3> points(xyz.size() / 3);
-  for (std::size_t v = 0; v < points.size(); ++v) points[v] = Vec3(xyz[3 * v], xyz[3 * v + 1], xyz[3 * v + 2]);
+  for (std::size_t v = 0; v < points.size(); ++v)
+    points[v] = Vec3(xyz[3 * v], xyz[3 * v + 1], xyz[3 * v + 2]);
   return points;
 }
 
@@ -166,11 +168,13 @@ std::string write_scene(const Scene& scene) {
     put_camera(w, v.camera);
     w.put_string(v.image_path);
     w.put(std::uint8_t(v.used));
+    w.put(std::uint8_t(v.orientation == ImageOrientation::exif));
     w.put(std::uint8_t(v.pixels != nullptr));
     if (v.pixels) {
       w.put(std::int32_t(v.pixels->width()));
       w.put(std::int32_t(v.pixels->height()));
       w.put(std::int32_t(v.pixels->channels()));
+      w.put(std::int32_t(v.pixels->bits()));
       w.put_string(std::string(reinterpret_cast<const char*>(v.pixels->data()), v.pixels->bytes()));
     }
   }
@@ -194,15 +198,20 @@ Scene read_scene(const std::string& bytes) {
     v.camera = get_camera(r);
     v.image_path = r.get_string();
     v.used = r.get_bool();
+    v.orientation = r.get_bool() ? ImageOrientation::exif : ImageOrientation::stored;
     if (r.get_bool()) {
-      const int width = r.get<std::int32_t>(), height = r.get<std::int32_t>(), channels = r.get<std::int32_t>();
-      if (width < 1 || height < 1 || width > 1 << 16 || height > 1 << 16 || (channels != 1 && channels != 3))
+      const int width = r.get<std::int32_t>(), height = r.get<std::int32_t>(),
+                channels = r.get<std::int32_t>();
+      const int bits = r.get<std::int32_t>();
+      if (width < 1 || height < 1 || width > 1 << 16 || height > 1 << 16 ||
+          (channels != 1 && channels != 3) || (bits != 8 && bits != 16))
         r.fail("an in-memory image of " + std::to_string(width) + "x" + std::to_string(height) + "x" +
-               std::to_string(channels));
+               std::to_string(channels) + " at " + std::to_string(bits) + " bits");
       const std::string data = r.get_string();
-      if (data.size() != std::size_t(width) * std::size_t(height) * std::size_t(channels))
+      if (data.size() !=
+          std::size_t(width) * std::size_t(height) * std::size_t(channels) * std::size_t(bits / 8))
         r.fail("an in-memory image's pixels do not fill it");
-      Image im(width, height, channels);
+      Image im(width, height, channels, bits);
       std::memcpy(im.data(), data.data(), data.size());
       v.pixels = std::make_shared<const Image>(std::move(im));
     }
@@ -348,7 +357,8 @@ std::uint64_t mesh_key(const TriangleMesh& mesh) {
       h = mix(h ^ bits) + 0x9e3779b97f4a7c15ull;
     }
   for (const Face& f : mesh.faces)
-    h = mix(h ^ (std::uint64_t(std::uint32_t(f[0])) | std::uint64_t(std::uint32_t(f[1])) << 32)) ^ std::uint32_t(f[2]);
+    h = mix(h ^ (std::uint64_t(std::uint32_t(f[0])) | std::uint64_t(std::uint32_t(f[1])) << 32)) ^
+        std::uint32_t(f[2]);
   return h;
 }
 
@@ -393,12 +403,13 @@ ScoreJob read_score_job(const std::string& bytes) {
   job.region.normals = get_points(r);
   job.region.centroid = get_vec3(r);
   job.region.mean_normal = get_vec3(r);
-  if (job.region.normals.size() != job.region.vertices.size()) r.fail("a region's normals are not one per vertex");
+  if (job.region.normals.size() != job.region.vertices.size())
+    r.fail("a region's normals are not one per vertex");
   job.existing = get_points(r);
   EnergyOptions& o = job.options;
   for (double& x : o.weights) x = r.get_finite();
-  for (double* x : {&o.penalty, &o.parallax_delta, &o.incidence_mu, &o.incidence_sigma, &o.visibility.relative_eps,
-                    &o.visibility.absolute_eps_of_diagonal})
+  for (double* x : {&o.penalty, &o.parallax_delta, &o.incidence_mu, &o.incidence_sigma,
+                    &o.visibility.relative_eps, &o.visibility.absolute_eps_of_diagonal})
     *x = r.get_finite();
   o.check();
   const std::uint64_t n = r.get_count(200);

@@ -7,9 +7,6 @@
 namespace meshnbv::meshlab {
 namespace {
 
-// round(v / 257) in integers: OpenCV's 16- to 8-bit conversion in the core's loader.
-inline std::uint8_t to8(quint16 v) { return std::uint8_t((unsigned(v) + 128u) / 257u); }
-
 bool is_16_bit_colour(QImage::Format f) {
   return f == QImage::Format_RGBA64 || f == QImage::Format_RGBX64 ||
          f == QImage::Format_RGBA64_Premultiplied;
@@ -27,11 +24,11 @@ Image image_from_qimage(const QImage& image) {
                     ((f == QImage::Format_Indexed8 || f == QImage::Format_Mono ||
                       f == QImage::Format_MonoLSB) && image.isGrayscale());
   if (f == QImage::Format_Grayscale16) {
-    Image out(image.width(), image.height(), 1);
+    // Kept at 16 bits, as the core keeps 16-bit files.
+    Image out(image.width(), image.height(), 1, 16);
     for (int y = 0; y < image.height(); ++y) {
       const quint16* row = reinterpret_cast<const quint16*>(image.constScanLine(y));
-      std::uint8_t* dst = out.pixel(0, y);
-      for (int x = 0; x < image.width(); ++x) dst[x] = to8(row[x]);
+      std::copy(row, row + image.width(), out.pixel16(0, y));
     }
     return out;
   }
@@ -45,16 +42,17 @@ Image image_from_qimage(const QImage& image) {
     return out;
   }
   if (is_16_bit_colour(f)) {
-    // Non-premultiplied 16-bit colour, channels as stored (alpha dropped).
+    // Non-premultiplied 16-bit colour, channels as stored (alpha dropped),
+    // kept at 16 bits.
     const QImage rgba = image.convertToFormat(QImage::Format_RGBA64);
-    Image out(rgba.width(), rgba.height(), 3);
+    Image out(rgba.width(), rgba.height(), 3, 16);
     for (int y = 0; y < rgba.height(); ++y) {
       const QRgba64* row = reinterpret_cast<const QRgba64*>(rgba.constScanLine(y));
-      std::uint8_t* dst = out.pixel(0, y);
+      std::uint16_t* dst = out.pixel16(0, y);
       for (int x = 0; x < rgba.width(); ++x, dst += 3) {
-        dst[0] = to8(row[x].red());
-        dst[1] = to8(row[x].green());
-        dst[2] = to8(row[x].blue());
+        dst[0] = row[x].red();
+        dst[1] = row[x].green();
+        dst[2] = row[x].blue();
       }
     }
     return out;

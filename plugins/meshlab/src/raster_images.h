@@ -11,9 +11,9 @@
 namespace meshnbv::meshlab {
 
 // The pixels the core's loader would decode from the same file:
-// 8-bit grey for grey formats and grey palettes, else RGB (alpha dropped
-// without blending); 16-bit formats (Grayscale16, RGBA64) are scaled to
-// 8 bits as round(v / 257), as the core's loader scales 16-bit files.
+// grey for grey formats and grey palettes, else RGB (alpha dropped
+// without blending); 16-bit formats (Grayscale16, RGBA64) stay 16-bit, as
+// the core's loader keeps 16-bit files, the others are 8-bit.
 // Throws meshnbv::Error for a null image.
 Image image_from_qimage(const QImage& image);
 

@@ -1,6 +1,6 @@
-// 8-bit images loaded through OpenCV (PNG, JPEG, TIFF, ...) and a bounded,
-// thread-safe cache so that scenes with hundreds of large photos never hold
-// them all in memory.
+// 8- and 16-bit images loaded through OpenCV (PNG, JPEG, TIFF, ...) and a
+// bounded, thread-safe cache so that scenes with hundreds of large photos
+// never hold them all in memory.
 #pragma once
 
 #include <cstdint>
@@ -13,32 +13,56 @@
 
 namespace meshnbv {
 
+// Which way a photo's pixels are read. `stored`: as the file stores them,
+// the EXIF orientation tag ignored (what COLMAP, OpenMVG and AliceVision
+// compute on). `exif`: turned as the EXIF orientation tag says (JPEG), as a
+// viewer shows the photo.
+enum class ImageOrientation { stored, exif };
+
 class Image {
  public:
   Image() = default;
-  // Black image; channels 1 (grey) or 3 (RGB).
-  Image(int width, int height, int channels);
+  // Black image; channels 1 (grey) or 3 (RGB); bits 8 or 16 per channel.
+  Image(int width, int height, int channels, int bits = 8);
 
   // Throws Error when the file is missing or does not decode. Grey images
-  // stay grey, colour images become RGB (alpha dropped), 16-bit ones are
-  // scaled to 8 bits.
-  static Image load(const std::string& path);
-  // Writes PNG/JPEG/TIFF by extension; throws Error on failure.
+  // stay grey, colour images become RGB (alpha dropped); 16-bit files stay
+  // 16-bit, floating-point ones become 16-bit ([0, 1] -> [0, 65535]).
+  static Image load(const std::string& path, ImageOrientation orientation = ImageOrientation::stored);
+  // Writes PNG/JPEG/TIFF by extension; throws Error on failure. A 16-bit
+  // image goes to PNG and TIFF at 16 bits, to other formats at 8.
   void save(const std::string& path) const;
 
   int width() const { return width_; }
   int height() const { return height_; }
   int channels() const { return channels_; }
-  bool empty() const { return data_.empty(); }
-  std::size_t bytes() const { return data_.size(); }
-  const std::uint8_t* data() const { return data_.data(); }
-  std::uint8_t* data() { return data_.data(); }
+  int bits() const { return bits_; }
+  bool empty() const { return width_ == 0; }
+  std::size_t bytes() const { return bits_ == 16 ? data16_.size() * 2 : data_.size(); }
+  // The raw samples, row-major, channels interleaved: bytes() bytes
+  // (native-endian 16-bit values for bits() == 16).
+  const std::uint8_t* data() const {
+    return bits_ == 16 ? reinterpret_cast<const std::uint8_t*>(data16_.data()) : data_.data();
+  }
+  std::uint8_t* data() {
+    return bits_ == 16 ? reinterpret_cast<std::uint8_t*>(data16_.data()) : data_.data();
+  }
+  // 8-bit images only (bits() == 8).
   std::uint8_t* pixel(int x, int y) { return &data_[(std::size_t(y) * width_ + x) * channels_]; }
   const std::uint8_t* pixel(int x, int y) const {
     return &data_[(std::size_t(y) * width_ + x) * channels_];
   }
+  // 16-bit images only (bits() == 16).
+  std::uint16_t* pixel16(int x, int y) { return &data16_[(std::size_t(y) * width_ + x) * channels_]; }
+  const std::uint16_t* pixel16(int x, int y) const {
+    return &data16_[(std::size_t(y) * width_ + x) * channels_];
+  }
+  // The same image at 8 bits (round(v / 257)); a copy of an 8-bit one.
+  Image to_8bit() const;
+  // Channel c of pixel (x, y) in [0, 1] (value / 255 or / 65535).
+  float value(int x, int y, int c) const;
 
-  // 0.299 R + 0.587 G + 0.114 B, in [0, 1] (grey: value / 255).
+  // 0.299 R + 0.587 G + 0.114 B, in [0, 1] (grey: value / 255 or / 65535).
   float luminance(int x, int y) const;
 
   // Bilinear sampling at continuous coordinates with pixel centres at
@@ -51,8 +75,9 @@ class Image {
   bool sample_rgb(double x, double y, float out[3]) const;
 
  private:
-  int width_ = 0, height_ = 0, channels_ = 0;
-  std::vector<std::uint8_t> data_;
+  int width_ = 0, height_ = 0, channels_ = 0, bits_ = 8;
+  std::vector<std::uint8_t> data_;     // bits_ == 8
+  std::vector<std::uint16_t> data16_;  // bits_ == 16
 };
 
 // Float planes for fast repeated sampling (photo-consistency): luminance
@@ -60,6 +85,7 @@ class Image {
 // as Image.
 class FloatImage {
  public:
+  // Rows converted in parallel.
   static FloatImage luminance_of(const Image& image);
   static FloatImage rgb_of(const Image& image);
 
@@ -99,7 +125,9 @@ class ImageCache {
  public:
   explicit ImageCache(std::size_t max_bytes = std::size_t(1) << 30);
 
-  std::shared_ptr<const Image> get(const std::string& path);
+  // The file decoded with that orientation (each orientation its own entry).
+  std::shared_ptr<const Image> get(const std::string& path,
+                                   ImageOrientation orientation = ImageOrientation::stored);
   void clear();
   std::size_t bytes_held() const;
   std::size_t max_bytes() const { return max_bytes_; }

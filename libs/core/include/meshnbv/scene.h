@@ -31,6 +31,11 @@ struct View {
   //    reference it: the writers throw (see image_file).
   std::string image_path;
   std::shared_ptr<const Image> pixels;
+  // How image_path's pixels are read (see ImageOrientation). The readers
+  // leave `stored`, what the tools they read compute on; Scene::image turns
+  // a photo by its EXIF tag by itself when only the turned photo has the
+  // camera's size (the tool worked on the turned photo).
+  ImageOrientation orientation = ImageOrientation::stored;
   // False marks a view the caller keeps aside as a candidate even though it
   // has an image (the paper's Middlebury experiment).
   bool used = true;
@@ -58,6 +63,11 @@ struct ReprojectionStats {
   double median = 0, mean = 0, max = 0;
 };
 
+// The photo of a file-backed view decoded as Scene::image reads it (its
+// orientation, the EXIF turn for a stored photo on its side, the size
+// check), without a cache. Throws Error as Scene::image does.
+std::shared_ptr<const Image> load_view_image(const View& view);
+
 struct Scene {
   TriangleMesh mesh;
   std::string mesh_path;  // where the mesh came from (may be empty)
@@ -78,9 +88,11 @@ struct Scene {
   std::shared_ptr<ImageCache> images = std::make_shared<ImageCache>();
 
   // The image of view i: its in-memory pixels, else its file decoded via the
-  // cache. Throws Error when the view has no image or both sources, the file
-  // is missing or does not decode, or the image's size differs from the
-  // camera's.
+  // cache (in the view's orientation; a stored photo whose width and height
+  // are the camera's swapped is read turned by its EXIF tag when that gives
+  // the camera's size). Throws Error when the view has no image or both
+  // sources, the file is missing or does not decode, or the image's size
+  // differs from the camera's.
   std::shared_ptr<const Image> image(std::size_t view) const;
   std::size_t num_views_with_image() const;
   // Checks every camera (PinholeCamera::check), that no view has both image

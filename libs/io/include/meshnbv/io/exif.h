@@ -28,4 +28,16 @@ std::optional<ExifInfo> read_exif_if_known_type(const std::string& path);
 // The same from the bytes of a file (`name` for messages); for the fuzzer.
 ExifInfo read_exif_from_memory(const std::string& bytes, const std::string& name);
 
+// What a photo's header says, without decoding its pixels (`meshnbv info`).
+struct PhotoHeader {
+  int width = 0, height = 0;  // as stored
+  int bits = 0;               // per channel: PNG's IHDR, TIFF's BitsPerSample, 8 for JPEG; 0 unknown
+  int orientation = 0;  // the EXIF orientation tag, 1..8; 0 absent (or outside 1..8, which decoders ignore)
+};
+// Throws Error when the file is missing or not an image exiv2 reads;
+// nullopt for a file of a type exiv2 does not know.
+std::optional<PhotoHeader> read_photo_header(const std::string& path);
+// The same from the bytes of a file (`name` for messages); for the fuzzer.
+std::optional<PhotoHeader> read_photo_header_from_memory(const std::string& bytes, const std::string& name);
+
 }  // namespace meshnbv::io
