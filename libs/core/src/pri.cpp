@@ -650,9 +650,13 @@ void prepare_view(const PriInputs& in, PreparedView* p) {
 // decoding and conversion in parallel with the sampling of earlier views.
 class ViewQueue {
  public:
-  ViewQueue(const PriInputs& in, const SampleBlock& block, std::size_t ahead) : in_(in), ahead_(ahead) {
-    for (std::size_t i = 0; i < block.by_view.size(); ++i)
-      if (!block.by_view[i].empty()) order_.push_back(i);  // the others are not even decoded
+  // `order`: the views in the order they are taken; those the block does
+  // not need are not even decoded.
+  ViewQueue(const PriInputs& in, const SampleBlock& block, const std::vector<std::size_t>& order,
+            std::size_t ahead)
+      : in_(in), ahead_(ahead) {
+    for (std::size_t i : order)
+      if (!block.by_view[i].empty()) order_.push_back(i);
     launch();
   }
   ~ViewQueue() {  // on an exception too: no task may outlive what it writes
@@ -989,15 +993,22 @@ PriPart compute_pri_part(const Scene& scene, const PriOptions& options, const Pr
   arena.execute([&] {
     // Photos prepared ahead: as many as threads, at most 4.
     const std::size_t ahead = std::size_t(std::clamp(thread_count(options), 1, 4));
-    for (std::size_t begin = 0; begin < n;) {
+    // Blocks take the views forwards and backwards in turn: a block starts
+    // with the photos the one before it ended with, which the image cache
+    // still holds (fewer decodes when the photos outgrow the cache; the
+    // samples do not depend on the order).
+    std::vector<std::size_t> order(views);
+    for (std::size_t i = 0; i < views; ++i) order[i] = i;
+    for (std::size_t begin = 0; begin < n; std::reverse(order.begin(), order.end())) {
       const SampleBlock block = plan_block(in, begin);
-      ViewQueue queue(in, block, ahead);
-      for (std::size_t i = 0; i < views; ++i) {
+      ViewQueue queue(in, block, order, ahead);
+      for (std::size_t j = 0; j < views; ++j) {
+        const std::size_t i = order[j];
         if (!block.by_view[i].empty()) {
           const std::unique_ptr<PreparedView> view = queue.next();
           sample_view(in, block, i, view->plane);
         }
-        const double done = (double(block.begin) + double(block.end - block.begin) * double(i + 1) / double(views)) / double(n);
+        const double done = (double(block.begin) + double(block.end - block.begin) * double(j + 1) / double(views)) / double(n);
         report_progress(progress, 0.95 * done, "pri");
       }
       score_block(in, block, &result);
