@@ -16,6 +16,7 @@ namespace {
 // The image's pixels as an OpenCV matrix (RGB order kept: colours are given
 // to OpenCV in the same order).
 cv::Mat as_mat(Image& image) {
+  if (image.bits() != 8) throw Error("drawing needs an 8-bit image (Image::to_8bit)");
   return cv::Mat(image.height(), image.width(), image.channels() == 1 ? CV_8UC1 : CV_8UC3, image.data());
 }
 
