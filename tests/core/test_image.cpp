@@ -247,6 +247,33 @@ TEST(Image, ExifOrientationAllEightTagsStoredOrTurned) {
   EXPECT_EQ(cache.loads(), 2u);
 }
 
+// The float planes of PRI equal the per-pixel reads bit for bit, for every
+// depth and channel count.
+TEST(Image, FloatPlanesEqualPerPixelReadsExactly) {
+  std::uint32_t state = 12345;
+  const auto next = [&] { return state = state * 1664525u + 1013904223u; };
+  for (int bits : {8, 16})
+    for (int channels : {1, 3}) {
+      Image im(37, 23, channels, bits);
+      for (int y = 0; y < im.height(); ++y)
+        for (int x = 0; x < im.width(); ++x)
+          for (int c = 0; c < channels; ++c) {
+            if (bits == 16)
+              im.pixel16(x, y)[c] = std::uint16_t(next() >> 16);
+            else
+              im.pixel(x, y)[c] = std::uint8_t(next() >> 24);
+          }
+      const FloatImage lum = FloatImage::luminance_of(im), rgb = FloatImage::rgb_of(im);
+      int differing = 0;
+      for (int y = 0; y < im.height(); ++y)
+        for (int x = 0; x < im.width(); ++x) {
+          differing += lum.at(x, y) != im.luminance(x, y);
+          for (int c = 0; c < 3; ++c) differing += rgb.at(x, y, c) != im.value(x, y, c);
+        }
+      EXPECT_EQ(differing, 0) << bits << " bits, " << channels << " channels";
+    }
+}
+
 TEST(Image, MissingAndUndecodableFiles) {
   const std::string dir = test::temp_dir("image_bad");
   MESHNBV_EXPECT_ERROR_CONTAINS(Image::load(dir + "/nope.png"), "not found");
