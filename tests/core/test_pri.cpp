@@ -126,6 +126,51 @@ TEST(PriMeasures, PairSumsEqualThePairwiseLoop) {
   }
 }
 
+// The streamed sums (pair_accumulate, one patch at a time, as compute_pri
+// takes the views) are the batch sums bitwise; the texture is the mean
+// standard deviation of the patches, written out here.
+TEST(PriMeasures, StreamedSumsAreTheBatchSums) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(0, 1);
+  std::vector<double> scratch;
+  for (int trial = 0; trial < 200; ++trial) {
+    const std::size_t m = 1 + rng() % 40, n = 3 + rng() % 100;
+    const double level = trial % 2 ? 255.0 : 1.0, min_variance = 1e-4 * level * level;
+    std::vector<std::vector<float>> data(m, std::vector<float>(n));
+    for (std::size_t a = 0; a < m; ++a)
+      for (std::size_t k = 0; k < n; ++k)
+        data[a][k] = (trial % 4 == 0 && a % 2 == 0) ? float(0.25 * level) : float(level * u(rng));
+    std::vector<const float*> patches;
+    double texture = 0;
+    for (const auto& d : data) {
+      patches.push_back(d.data());
+      double mean = 0, ss = 0;
+      for (float x : d) mean += x;
+      mean /= double(n);
+      for (float x : d) ss += (x - mean) * (x - mean);
+      texture += std::sqrt(ss / double(n));
+    }
+    texture /= double(m);
+    for (const Measure measure : {Measure::SSD, Measure::NCC}) {
+      std::vector<double> acc(pair_accumulator_size(n), 0.0);
+      for (const float* p : patches) pair_accumulate(acc.data(), p, n, measure, min_variance);
+      const PairSum streamed = pair_accumulated_sum(acc.data(), n, measure);
+      std::size_t pairs = 0;
+      const double batch = pair_error_sum(patches, n, measure, min_variance, &pairs, &scratch);
+      EXPECT_EQ(streamed.sum, batch) << trial;
+      EXPECT_EQ(streamed.pairs, pairs) << trial;
+      EXPECT_EQ(streamed.patches, m) << trial;
+      EXPECT_NEAR(streamed.texture, texture, 1e-12 * level) << trial;
+    }
+  }
+  // Nothing added: no patches, no pairs, no texture.
+  std::vector<double> acc(pair_accumulator_size(5), 0.0);
+  const PairSum none = pair_accumulated_sum(acc.data(), 5, Measure::NCC);
+  EXPECT_EQ(none.patches, 0u);
+  EXPECT_EQ(none.pairs, 0u);
+  EXPECT_EQ(none.texture, 0.0);
+}
+
 TEST(PriMeasures, PairSumsOfTooFewViews) {
   std::vector<double> scratch;
   std::size_t pairs = 7;

@@ -58,7 +58,7 @@ double ssd_error(const float* a, const float* b, std::size_t n) {
 namespace {
 
 struct PatchStats {
-  double mean = 0, inv_norm = 0;  // inv_norm = 1 / sqrt(sum (x - mean)^2)
+  double mean = 0, variance = 0, inv_norm = 0;  // inv_norm = 1 / sqrt(sum (x - mean)^2)
   bool textureless = true;
 };
 
@@ -69,8 +69,8 @@ PatchStats patch_stats(const float* a, std::size_t n, double min_variance) {
   s.mean = sum / double(n);
   double ss = 0;
   for (std::size_t k = 0; k < n; ++k) ss += (a[k] - s.mean) * (a[k] - s.mean);
-  const double variance = ss / double(n);
-  s.textureless = !(variance >= min_variance) || ss <= 0;
+  s.variance = ss / double(n);
+  s.textureless = !(s.variance >= min_variance) || ss <= 0;
   s.inv_norm = s.textureless ? 0.0 : 1.0 / std::sqrt(ss);
   return s;
 }
@@ -200,46 +200,72 @@ double ncc_error(const float* a, const float* b, std::size_t n, double min_varia
   return ncc_from_stats(a, sa, b, sb, n);
 }
 
-double pair_error_sum(const std::vector<const float*>& patches, std::size_t n, Measure measure,
-                      double min_variance, std::size_t* pairs, std::vector<double>* scratch) {
-  const std::size_t m = patches.size();
-  std::vector<double>& acc = *scratch;
-  acc.assign(n, 0.0);
-  *pairs = 0;
-  if (n == 0 || m < 2) return 0.0;
+// Accumulator layout (pair_accumulator_size(n) = n + 4 doubles):
+// [0, n) the running mean patch (SSD) or sum_a z_a (NCC); [n] the sum of
+// squared deviations from the running mean (SSD) or sum_a |z_a|^2 (NCC);
+// [n + 1] patches added; [n + 2] textured patches (NCC); [n + 3] the sum of
+// the patches' standard deviations.
+std::size_t pair_accumulator_size(std::size_t n) { return n + 4; }
+
+void pair_accumulate(double* acc, const float* patch, std::size_t n, Measure measure, double min_variance) {
+  const PatchStats st = patch_stats(patch, n, min_variance);
+  const double count = acc[n + 1] + 1.0;
+  acc[n + 1] = count;
+  acc[n + 3] += std::sqrt(st.variance);
   if (measure == Measure::SSD) {
-    // m sum_a |x_a - mu|^2 / n, centred on the mean patch (no cancellation).
-    for (const float* p : patches)
-      for (std::size_t k = 0; k < n; ++k) acc[k] += p[k];
-    for (std::size_t k = 0; k < n; ++k) acc[k] /= double(m);
+    // Welford: the deviations' sum grows by (x - old mean)(x - new mean)
+    // (centred on the running mean patch: no cancellation).
     double ss = 0;
-    for (const float* p : patches)
-      for (std::size_t k = 0; k < n; ++k) {
-        const double d = double(p[k]) - acc[k];
-        ss += d * d;
-      }
-    *pairs = m * (m - 1) / 2;
-    return double(m) * ss / double(n);
+    for (std::size_t k = 0; k < n; ++k) {
+      const double x = patch[k], d = x - acc[k];
+      acc[k] += d / count;
+      ss += d * (x - acc[k]);
+    }
+    acc[n] += ss;
+    return;
+  }
+  if (st.textureless) return;
+  acc[n + 2] += 1.0;
+  double norms = 0;  // |z|^2 (1 up to rounding)
+  for (std::size_t k = 0; k < n; ++k) {
+    const double z = (double(patch[k]) - st.mean) * st.inv_norm;
+    acc[k] += z;
+    norms += z * z;
+  }
+  acc[n] += norms;
+}
+
+PairSum pair_accumulated_sum(const double* acc, std::size_t n, Measure measure) {
+  PairSum out;
+  out.patches = std::size_t(acc[n + 1]);
+  if (out.patches > 0) out.texture = acc[n + 3] / double(out.patches);
+  if (n == 0) return out;
+  if (measure == Measure::SSD) {
+    // sum_{a<b} |x_a - x_b|^2 / n = m sum_a |x_a - mu|^2 / n.
+    if (out.patches < 2) return out;
+    out.pairs = out.patches * (out.patches - 1) / 2;
+    out.sum = double(out.patches) * acc[n] / double(n);
+    return out;
   }
   // NCC: (1 - rho) / 2 summed over the textured pairs.
-  std::size_t textured = 0;
-  double norms = 0;  // sum_a |z_a|^2 (1 up to rounding)
-  for (const float* p : patches) {
-    const PatchStats st = patch_stats(p, n, min_variance);
-    if (st.textureless) continue;
-    ++textured;
-    for (std::size_t k = 0; k < n; ++k) {
-      const double z = (double(p[k]) - st.mean) * st.inv_norm;
-      acc[k] += z;
-      norms += z * z;
-    }
-  }
-  if (textured < 2) return 0.0;
+  const std::size_t textured = std::size_t(acc[n + 2]);
+  if (textured < 2) return out;
   double total = 0;
   for (std::size_t k = 0; k < n; ++k) total += acc[k] * acc[k];
-  *pairs = textured * (textured - 1) / 2;
-  const double rho_sum = (total - norms) / 2.0;
-  return (double(*pairs) - rho_sum) / 2.0;
+  out.pairs = textured * (textured - 1) / 2;
+  const double rho_sum = (total - acc[n]) / 2.0;
+  out.sum = (double(out.pairs) - rho_sum) / 2.0;
+  return out;
+}
+
+double pair_error_sum(const std::vector<const float*>& patches, std::size_t n, Measure measure,
+                      double min_variance, std::size_t* pairs, std::vector<double>* scratch) {
+  std::vector<double>& acc = *scratch;
+  acc.assign(pair_accumulator_size(n), 0.0);
+  for (const float* p : patches) pair_accumulate(acc.data(), p, n, measure, min_variance);
+  const PairSum s = pair_accumulated_sum(acc.data(), n, measure);
+  *pairs = s.pairs;
+  return s.sum;
 }
 
 namespace {
@@ -506,8 +532,10 @@ std::size_t slot_floats(const PriInputs& in, const PriFaceViews& fv) {
   return lattice_floats(in, fv) * std::size_t(hypotheses(in.options));
 }
 
-// Consecutive faces [begin, end) and the samples of each (face, view): the
-// slots of face f are consecutive, one per view of fv[f].views.
+// The offset measure (its sweeps compare every view with the reference, so
+// the samples are kept): consecutive faces [begin, end) and the samples of
+// each (face, view); the slots of face f are consecutive, one per view of
+// fv[f].views.
 struct SampleBlock {
   std::size_t begin = 0, end = 0;
   std::vector<std::size_t> offset;  // first float of face begin + j
@@ -650,13 +678,10 @@ void prepare_view(const PriInputs& in, PreparedView* p) {
 // decoding and conversion in parallel with the sampling of earlier views.
 class ViewQueue {
  public:
-  // `order`: the views in the order they are taken; those the block does
-  // not need are not even decoded.
-  ViewQueue(const PriInputs& in, const SampleBlock& block, const std::vector<std::size_t>& order,
-            std::size_t ahead)
-      : in_(in), ahead_(ahead) {
-    for (std::size_t i : order)
-      if (!block.by_view[i].empty()) order_.push_back(i);
+  // `order`: the views in the order they are taken, only those the block
+  // needs (no other is decoded).
+  ViewQueue(const PriInputs& in, std::vector<std::size_t> order, std::size_t ahead)
+      : in_(in), ahead_(ahead), order_(std::move(order)) {
     launch();
   }
   ~ViewQueue() {  // on an exception too: no task may outlive what it writes
@@ -711,15 +736,6 @@ struct PairErrors {
   double curvature = 0;   // offset: cost curvature at the minimum (per pixel^2)
   double best_cost = 0;   // offset: the least cost
 };
-
-// The error of every pair of a face's patches (n floats each), in O(m n)
-// (pair_error_sum).
-PairErrors pair_errors(const std::vector<const float*>& patches, std::size_t n, const PriOptions& o,
-                       std::vector<double>* scratch) {
-  PairErrors e;
-  e.sum = pair_error_sum(patches, n, o.measure, o.textureless_variance, &e.pairs, scratch);
-  return e;
-}
 
 // The offset measure on a face's patches (each one lattice of n floats per
 // hypothesis of x_px, the hypotheses in pixels; `ref` the reference
@@ -783,7 +799,19 @@ float texture_of(const std::vector<const float*>& patches, std::size_t at, std::
   return float(sum / double(patches.size()));
 }
 
-// PRI, views, status and evidence of every face of the block from its samples.
+// Face f's evidence key (options and its views' keys), usable views and
+// lattice samples.
+void set_face_evidence(const PriInputs& in, std::size_t f, std::size_t usable, PriResult* result) {
+  const PriFaceViews& fv = in.selection.faces[f];
+  std::uint64_t key = in.selection.options_key;
+  for (int v : fv.views) key = combine(key, in.selection.view_keys[std::size_t(v)]);
+  result->evidence_key[f] = key;
+  result->pri_views[f] = int(usable);
+  result->pri_samples[f] = int(lattice_points(fv.samples_per_side));
+}
+
+// The offset measure: PRI (signed, before smooth_offsets), views, status,
+// evidence and precision of every face of the block from its samples.
 // (Positions f of the selection: face in.selection.face_id(f); `result`'s
 // arrays are indexed by position.)
 void score_block(const PriInputs& in, const SampleBlock& block, PriResult* result) {
@@ -791,7 +819,6 @@ void score_block(const PriInputs& in, const SampleBlock& block, PriResult* resul
   const int hyps = hypotheses(in.options);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(block.begin, block.end), [&](const auto& r) {
     std::vector<const float*> patches;
-    std::vector<double> scratch;
     std::vector<double> costs;
     for (std::size_t f = r.begin(); f < r.end(); ++f) {
       const std::size_t n = lattice_floats(in, fv[f]);
@@ -804,34 +831,106 @@ void score_block(const PriInputs& in, const SampleBlock& block, PriResult* resul
         if (int(k) == fv[f].reference) ref = patches.size();
         patches.push_back(slot);
       }
-      std::uint64_t key = in.selection.options_key;
-      for (int v : fv[f].views) key = combine(key, in.selection.view_keys[std::size_t(v)]);
-      result->evidence_key[f] = key;
-      result->pri_views[f] = int(patches.size());
-      result->pri_samples[f] = int(lattice_points(fv[f].samples_per_side));
+      set_face_evidence(in, f, patches.size(), result);
       if (patches.size() < 2) continue;  // unobserved
       result->pri_texture[f] = texture_of(patches, std::size_t(hyps / 2) * n, n);
-      const bool offset = in.options.measure == Measure::Offset;
-      const PairErrors e = offset ? offset_errors(patches, ref, n, in.hypotheses_px, in.options, &costs)
-                                  : pair_errors(patches, n, in.options, &scratch);
+      const PairErrors e = offset_errors(patches, ref, n, in.hypotheses_px, in.options, &costs);
       result->pri_pairs[f] = int(e.pairs);
       if (e.pairs == 0) {
         result->status[f] = FaceStatus::Textureless;
         continue;
       }
-      // offset: signed here; smooth_offsets() averages and takes the magnitude.
-      result->pri[f] = offset ? float(e.sum * fv[f].step) : float(e.sum / double(e.pairs));
-      if (offset) {
-        result->offset_signed[f] = result->pri[f];
-        result->offset_pixel[f] = float(fv[f].pixel);
+      // Signed here; smooth_offsets() averages and takes the magnitude.
+      result->pri[f] = float(e.sum * fv[f].step);
+      result->offset_signed[f] = result->pri[f];
+      result->offset_pixel[f] = float(fv[f].pixel);
+      // The estimate's precision (inverse variance, up to a common factor)
+      // by the Laplace approximation of the sweep: the cost's curvature at
+      // its minimum times the comparisons made (views x samples) over the
+      // residual noise, the least cost. A minimum at an end of the sweep
+      // has no curvature: no weight.
+      result->offset_precision[f] = float(e.curvature * double(e.pairs) * double(n) / std::max(e.best_cost, kMinResidualCost));
+      result->status[f] = FaceStatus::Observed;
+    }
+  });
+}
+
+// SSD and NCC streamed (pair_accumulate): each face of a block holds only
+// its accumulator, which takes the face's patch in each view as that view
+// is sampled; no patch is stored, so a block holds ~30x the faces of a
+// SampleBlock and the photos are usually decoded once. The views are
+// always taken in ascending order, each face's in the order of its view
+// list: the sums are bitwise those of pair_error_sum over the face's
+// patches, whatever the blocks, tiles, ranks and threads.
+struct StreamBlock {
+  std::size_t begin = 0, end = 0;
+  std::vector<std::size_t> offset;  // first double of face begin + j
+  std::unique_ptr<double[]> acc;
+  std::vector<std::vector<std::uint32_t>> by_view;  // per view, the faces (f - begin) it sees
+};
+
+// Faces from `begin` in a block whose accumulators and view lists stay
+// under ~1 GB.
+StreamBlock plan_stream_block(const PriInputs& in, std::size_t begin) {
+  const std::vector<PriFaceViews>& fv = in.selection.faces;
+  const std::size_t budget = std::size_t(1) << 30;  // bytes
+  StreamBlock block;
+  block.begin = block.end = begin;
+  std::size_t doubles = 0, bytes = 0;
+  while (block.end < fv.size() && block.end - begin < std::numeric_limits<std::uint32_t>::max()) {
+    const std::size_t need = pair_accumulator_size(lattice_floats(in, fv[block.end]));
+    const std::size_t more = need * sizeof(double) + fv[block.end].views.size() * sizeof(std::uint32_t) + sizeof(std::size_t);
+    if (bytes + more > budget && block.end > begin) break;
+    block.offset.push_back(doubles);
+    doubles += need;
+    bytes += more;
+    ++block.end;
+  }
+  block.acc.reset(new double[doubles]());
+  block.by_view.resize(in.selection.cameras.size());
+  for (std::size_t f = block.begin; f < block.end; ++f)
+    for (int v : fv[f].views) block.by_view[std::size_t(v)].push_back(std::uint32_t(f - block.begin));
+  return block;
+}
+
+// Camera i samples every face of the block that it sees, on `plane`, into
+// the faces' accumulators.
+void stream_view(const PriInputs& in, StreamBlock* block, std::size_t i, const FloatImage& plane) {
+  const std::vector<std::uint32_t>& faces = block->by_view[i];
+  const std::vector<PriFaceViews>& fv = in.selection.faces;
+  const PinholeCamera& cam = in.selection.cameras[i];
+  const ViewSampler view{plane, cam, in.channels, !cam.has_distortion(), cam.K() * cam.R, cam.K() * cam.t};
+  const Measure measure = in.options.measure;
+  const double min_variance = in.options.textureless_variance;
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, faces.size()), [&](const auto& r) {
+    std::vector<float> patch;
+    for (std::size_t j = r.begin(); j < r.end(); ++j) {
+      const std::size_t f = block->begin + faces[j];
+      const std::size_t n = lattice_floats(in, fv[f]);
+      patch.resize(n);
+      sample_face(in.scene.mesh, in.selection.face_id(f), fv[f], view, in.hypotheses_px, patch.data());
+      if (std::isnan(patch[0])) continue;  // view unusable here
+      pair_accumulate(&block->acc[block->offset[faces[j]]], patch.data(), n, measure, min_variance);
+    }
+  });
+}
+
+// PRI, views, status and evidence of every face of a streamed block.
+void score_stream_block(const PriInputs& in, const StreamBlock& block, PriResult* result) {
+  const std::vector<PriFaceViews>& fv = in.selection.faces;
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(block.begin, block.end), [&](const auto& r) {
+    for (std::size_t f = r.begin(); f < r.end(); ++f) {
+      const std::size_t n = lattice_floats(in, fv[f]);
+      const PairSum e = pair_accumulated_sum(&block.acc[block.offset[f - block.begin]], n, in.options.measure);
+      set_face_evidence(in, f, e.patches, result);
+      if (e.patches < 2) continue;  // unobserved
+      result->pri_texture[f] = float(e.texture);
+      result->pri_pairs[f] = int(e.pairs);
+      if (e.pairs == 0) {
+        result->status[f] = FaceStatus::Textureless;
+        continue;
       }
-      // offset: the estimate's precision (inverse variance, up to a common
-      // factor) by the Laplace approximation of the sweep: the cost's
-      // curvature at its minimum times the comparisons made (views x
-      // samples) over the residual noise, the least cost. A minimum at an
-      // end of the sweep has no curvature: no weight.
-      if (offset)
-        result->offset_precision[f] = float(e.curvature * double(e.pairs) * double(n) / std::max(e.best_cost, kMinResidualCost));
+      result->pri[f] = float(e.sum / double(e.pairs));
       result->status[f] = FaceStatus::Observed;
     }
   });
@@ -999,17 +1098,42 @@ PriPart compute_pri_part(const Scene& scene, const PriOptions& options, const Pr
     // samples do not depend on the order).
     std::vector<std::size_t> order(views);
     for (std::size_t i = 0; i < views; ++i) order[i] = i;
+    const auto progress_at = [&](std::size_t begin, std::size_t end, std::size_t j) {
+      const double done = (double(begin) + double(end - begin) * double(j + 1) / double(views)) / double(n);
+      report_progress(progress, 0.95 * done, "pri");
+    };
+    const auto needed = [&](const auto& by_view) {
+      std::vector<std::size_t> out;
+      for (std::size_t i : order)
+        if (!by_view[i].empty()) out.push_back(i);
+      return out;
+    };
+    if (options.measure != Measure::Offset) {
+      for (std::size_t begin = 0; begin < n;) {
+        StreamBlock block = plan_stream_block(in, begin);
+        ViewQueue queue(in, needed(block.by_view), ahead);
+        for (std::size_t i = 0; i < views; ++i) {
+          if (!block.by_view[i].empty()) {
+            const std::unique_ptr<PreparedView> view = queue.next();
+            stream_view(in, &block, i, view->plane);
+          }
+          progress_at(block.begin, block.end, i);
+        }
+        score_stream_block(in, block, &result);
+        begin = block.end;
+      }
+      return;
+    }
     for (std::size_t begin = 0; begin < n; std::reverse(order.begin(), order.end())) {
       const SampleBlock block = plan_block(in, begin);
-      ViewQueue queue(in, block, order, ahead);
+      ViewQueue queue(in, needed(block.by_view), ahead);
       for (std::size_t j = 0; j < views; ++j) {
         const std::size_t i = order[j];
         if (!block.by_view[i].empty()) {
           const std::unique_ptr<PreparedView> view = queue.next();
           sample_view(in, block, i, view->plane);
         }
-        const double done = (double(block.begin) + double(block.end - block.begin) * double(j + 1) / double(views)) / double(n);
-        report_progress(progress, 0.95 * done, "pri");
+        progress_at(block.begin, block.end, j);
       }
       score_block(in, block, &result);
       begin = block.end;

@@ -232,6 +232,23 @@ double ncc_error(const float* a, const float* b, std::size_t n, double min_varia
 double pair_error_sum(const std::vector<const float*>& patches, std::size_t n, Measure measure,
                       double min_variance, std::size_t* pairs, std::vector<double>* scratch);
 
+// The same sum streamed: a face's patches added one at a time, as each
+// view is sampled, into pair_accumulator_size(n) zeroed doubles, so that
+// no patch is kept. pair_error_sum is this loop over its patches in order:
+// the same patches in the same order give bitwise the same sum.
+//   SSD: Welford's running mean patch and sum of squared deviations;
+//   NCC: sum_a z_a and sum_a |z_a|^2 over the textured patches.
+// Each patch's standard deviation is summed too (the face's texture).
+std::size_t pair_accumulator_size(std::size_t n);
+void pair_accumulate(double* acc, const float* patch, std::size_t n, Measure measure, double min_variance);
+struct PairSum {
+  double sum = 0;           // as pair_error_sum
+  std::size_t pairs = 0;    // as pair_error_sum's *pairs
+  std::size_t patches = 0;  // patches added
+  double texture = 0;       // mean standard deviation of the patches added (0 without any)
+};
+PairSum pair_accumulated_sum(const double* acc, std::size_t n, Measure measure);
+
 // Colours for a PRI map: hue from green (low PRI) to red (high PRI) over
 // [lo, hi]; grey where the PRI is NaN.
 std::vector<Rgb8> pri_colors(const std::vector<float>& pri, double lo, double hi);
