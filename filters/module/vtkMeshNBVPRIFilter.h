@@ -119,8 +119,9 @@ public:
 
   ///@{
   /**
-   * OFFSET: the face is enlarged about its centroid until its inradius
-   * covers this many pixels in its most frontal view (`support_radius`).
+   * OFFSET: each face's signed offset is averaged over the connected faces
+   * within 2 sigma, Gaussian-weighted with sigma this many pixels of its
+   * reference view (`support_radius`).
    */
   vtkSetMacro(SupportRadius, double);
   vtkGetMacro(SupportRadius, double);

@@ -227,8 +227,8 @@ const OptionTable<PriOptions>& pri_option_table() {
           [](O& o, double x) { o.edge_margin = x; }),
       real_option<O>(
           "support_radius", "Support radius",
-          "Pixels. offset: the face is enlarged about its centroid until its inradius covers this "
-          "many pixels in its most frontal view, so that small faces are compared on enough pixels",
+          "Pixels. offset: each face's signed offset is averaged over the connected faces within "
+          "2 sigma, Gaussian-weighted with sigma this many pixels of its reference view",
           closed(0.5, 32, "pixels"), [](const O& o) { return o.support_radius; },
           [](O& o, double x) { o.support_radius = x; }),
       real_option<O>(
