@@ -23,8 +23,12 @@ HALF = (2736, 1824)            # rendered
 FULL = (2 * HALF[0], 2 * HALF[1])  # 5472 x 3648 = 20.0 MP, a 1" 20 MP sensor's photo
 VIEW_COUNTS = (25, 50, 100)
 TARGET_PEAK_MB = 4096
-# A folder holding pri_<n>.ply of another build, to compare with bit for bit.
-BASELINE = os.environ.get("MESHNBV_PHOTOS_BASELINE", "")
+# Another build's meshnbv (e.g. of an earlier commit), run on the same scenes
+# in the same session: its time, peak and decodes, and how far its PRI is
+# from this build's.
+BASELINE = os.environ.get("MESHNBV_PHOTOS_BASELINE_BIN", "")
+# What the baseline is, for the tables (e.g. "commit e42ac51").
+BASELINE_LABEL = os.environ.get("MESHNBV_PHOTOS_BASELINE_LABEL", BASELINE)
 
 
 def run(cmd):
@@ -112,9 +116,24 @@ def main():
              # The share of pri's CPU time (wall x 2 threads) that its decodes
              # and luminance conversions take, at photo_decode's cost per photo.
              "decode_cpu_share": pri["images_decoded"] * (2 * dec["decode_and_luminance_seconds"] / n) / (2 * wall)}
-        if BASELINE and os.path.exists(os.path.join(BASELINE, "pri_%d.ply" % n)):
-            r["identical_to_baseline"] = open(ply, "rb").read() == open(os.path.join(BASELINE, "pri_%d.ply" % n),
-                                                                        "rb").read()
+        if BASELINE:
+            bply, bsum = os.path.join(WORK, "pri_%d_baseline.ply" % n), os.path.join(WORK, "pri_%d_baseline.json" % n)
+            bwall, _, berr = run(["/usr/bin/time", "-f", "peak_kb %M", BASELINE, "pri", scene, "--out", bply,
+                                  "--json", bsum, "--overwrite", "--quiet"])
+            bpri = json.load(open(bsum))
+            r["baseline"] = {"binary": BASELINE_LABEL, "pri_wall_seconds": bwall,
+                             "peak_mb": float(re.search(r"peak_kb (\d+)", berr).group(1)) / 1024,
+                             "images_decoded": bpri["images_decoded"]}
+            a, b = read_ply(ply, fields=True), read_ply(bply, fields=True)
+            r["baseline"]["identical_ply"] = open(ply, "rb").read() == open(bply, "rb").read()
+            for name in a.dtype.names[2:]:
+                x, y = a[name].astype(np.float64), b[name].astype(np.float64)
+                both = np.isfinite(x) & np.isfinite(y)
+                rel = np.abs(x[both] - y[both]) / np.maximum(np.abs(y[both]), 1e-12)
+                r["baseline"]["max_relative_difference_" + name] = float(rel.max()) if rel.size else 0.0
+                r["baseline"]["finite_mismatch_" + name] = int(np.sum(np.isfinite(x) != np.isfinite(y)))
+            print("  baseline: pri %.1f s, peak %.0f MB, %d decodes" % (
+                bwall, r["baseline"]["peak_mb"], bpri["images_decoded"]), flush=True)
         results["runs"].append(r)
         print("%d views: decode %.1f s (+ luminance %.1f s) on 2 threads; pri %.1f s, peak %.0f MB, %d decodes" % (
             n, dec["decode_seconds"], dec["decode_and_luminance_seconds"], wall, peak, pri["images_decoded"]),
@@ -126,8 +145,9 @@ def main():
     lines = ["%s faces; photos %s (%.1f MP), JPEG %.1f MB on average; %s." % (
                  "{:,}".format(sc["faces"]), sc["photo_size"], sc["megapixels"], sc["jpeg_mb_mean"], sc["source"]),
              "`meshnbv pri` with default settings (every view per face), 2 threads; decode: "
-             "`bench/photos/photo_decode` on 2 threads, each photo once. PRI keeps the samples of a block of "
-             "faces (1 GB) and decodes each photo once per block that needs it, through a 1 GB image cache; "
+             "`bench/photos/photo_decode` on 2 threads, each photo once. PRI keeps one running sum per face over its "
+             "views (SSD by default; no samples stored), 1 GB of them per block of faces, and decodes "
+             "each photo once per block that sees it, through a 1 GB image cache; "
              "the share of its CPU time spent decoding is its decodes at photo_decode's cost per photo.", "",
              "| photos | decode (s) | decode + luminance (s) | `meshnbv pri` (s) | pri / decode | decodes in pri "
              "| their share of pri's CPU time | peak memory (MB) |",
@@ -141,6 +161,18 @@ def main():
     lines += ["", "Peak memory at most %.0f MB over %s photos: %s the %d MB target." % (
         worst, "/".join(str(n) for n in VIEW_COUNTS), "within" if worst <= TARGET_PEAK_MB else "ABOVE",
         TARGET_PEAK_MB)]
+    if BASELINE:
+        lines += ["", "Against the baseline build (%s), same scenes, same session:" % BASELINE_LABEL, "",
+                  "| photos | pri (s) | baseline (s) | ratio | peak (MB) | baseline peak (MB) | decodes | baseline "
+                  "decodes | max relative PRI difference | faces observed in one only |", "|---|---|---|---|---|---|---|---|---|---|"]
+        for r in results["runs"]:
+            b = r["baseline"]
+            name = [k for k in b if k.startswith("max_relative_difference_")]
+            rel = max((b[k] for k in name), default=0.0)
+            mism = sum(b[k] for k in b if k.startswith("finite_mismatch_"))
+            lines.append("| %d | %.1f | %.1f | %.2fx | %.0f | %.0f | %d | %d | %.1e | %d |" % (
+                r["views"], r["pri_wall_seconds"], b["pri_wall_seconds"], r["pri_wall_seconds"] / b["pri_wall_seconds"],
+                r["peak_mb"], b["peak_mb"], r["images_decoded"], b["images_decoded"], rel, mism))
     open(os.path.join(OUT, "photos.md"), "w").write("\n".join(lines) + "\n")
     print("\n".join(lines))
 
