@@ -1,8 +1,11 @@
 // PRI speed (issue 4) on a synthetic city of > 200,000 faces seen by 20
 // views at 640x480, generated once per process into a temporary folder.
 //
-//  BM_Pri/threads/views/spp      compute_pri with max_views_per_face = views
-//                                and samples_per_side = spp (0 = automatic).
+//  BM_Pri/threads/views/spp/simd compute_pri with max_views_per_face = views
+//                                and samples_per_side = spp (0 = automatic),
+//                                the sampling kernels at simd = 0 (scalar)
+//                                or 1 (the widest this processor runs; the
+//                                run's label names it).
 //                                The benchmark time is the sampling +
 //                                comparison phase: each iteration times the
 //                                view selection alone (select_pri_views, the
@@ -18,7 +21,8 @@
 //                                every 4th face.
 //  BM_BilinearPeak/threads/pattern  bilinear sampling at precomputed
 //                                coordinates in a tight loop: random (generic
-//                                and inline sampler) and triangle lattices.
+//                                and inline sampler) and triangle lattices,
+//                                scalar (0-2) and vectorised (3-4).
 //
 // Counters: faces_per_s (all faces of the mesh / all faces of the subset)
 // and samples_per_s (sum over those faces of (r+1)(r+2)/2 x views), over
@@ -38,6 +42,7 @@
 
 #include "meshnbv/image.h"
 #include "meshnbv/pri.h"
+#include "meshnbv/sampling.h"
 #include "meshnbv/synth/project.h"
 #include "pri_baseline.h"
 
@@ -166,6 +171,8 @@ static void BM_Pri(benchmark::State& state) {
   o.max_views_per_face = int(state.range(1));
   o.samples_per_side = int(state.range(2));
   (void)fx.views(o.max_views_per_face);  // checks select_pri_views against compute_pri
+  const SimdLevel simd = set_simd_level(state.range(3) ? simd_supported() : SimdLevel::scalar);
+  state.SetLabel(simd_name(simd));
   const double F = double(fx.scene().mesh.num_faces());
   const bool process = o.threads > 1;
   double select = 0, total = 0, samples = 0, cpu = 0;
@@ -194,12 +201,14 @@ static void BM_Pri(benchmark::State& state) {
   state.counters["observed"] = double(observed);
   // Sampling + comparison per CPU second (all threads): robust to other load.
   state.counters["cpu_samples_per_s"] = samples * it / cpu;
+  set_simd_level(simd_supported());
 }
 BENCHMARK(BM_Pri)
-    ->ArgNames({"threads", "views", "spp"})
-    ->Args({1, 5, 8})->Args({1, 10, 8})->Args({1, 20, 8})
-    ->Args({2, 5, 8})->Args({2, 10, 8})->Args({2, 20, 8})
-    ->Args({2, 10, 0})
+    ->ArgNames({"threads", "views", "spp", "simd"})
+    ->Args({1, 5, 8, 1})->Args({1, 10, 8, 1})->Args({1, 20, 8, 1})
+    ->Args({2, 5, 8, 1})->Args({2, 10, 8, 1})->Args({2, 20, 8, 1})
+    ->Args({2, 10, 0, 1})
+    ->Args({1, 5, 8, 0})->Args({1, 20, 8, 0})->Args({2, 5, 8, 0})->Args({2, 20, 8, 0})
     ->Iterations(1)->UseManualTime()->Unit(benchmark::kMillisecond);
 
 // compute_pri end to end with every image decoded again (PNG).
@@ -270,7 +279,10 @@ BENCHMARK(BM_Baseline)
 //   pattern 1: FloatImage::sample_gray (inline, one channel) at random coordinates;
 //   pattern 2: sample_gray on the lattices of 8-pixel triangles at random
 //              places (45 samples each, r = 8): the cache-friendly access
-//              of PRI, at the fastest pattern.
+//              of PRI, at the fastest pattern;
+//   pattern 3: sample_gray_points (the widest kernel this processor runs;
+//              the label names it) at the random coordinates, 64 at a call;
+//   pattern 4: sample_gray_points on the lattices, one call per lattice.
 // The report takes the fastest pattern as the peak (bench/pri_table.py).
 static void BM_BilinearPeak(benchmark::State& state) {
   Fixture& fx = fixture();
@@ -279,7 +291,8 @@ static void BM_BilinearPeak(benchmark::State& state) {
   const std::size_t n = std::size_t(1) << 20;
   std::vector<double> xy(2 * n);
   std::mt19937_64 rng(7);
-  if (pattern < 2) {
+  const bool random = pattern == 0 || pattern == 1 || pattern == 3;
+  if (random) {
     std::uniform_real_distribution<double> ux(0.0, plane.width() - 1.0), uy(0.0, plane.height() - 1.0);
     for (std::size_t k = 0; k < n; ++k) xy[2 * k] = ux(rng), xy[2 * k + 1] = uy(rng);
   } else {
@@ -297,19 +310,35 @@ static void BM_BilinearPeak(benchmark::State& state) {
         }
     }
   }
+  // The vector kernels read the coordinates as two arrays.
+  std::vector<double> x(n), y(n);
+  std::vector<float> vals(n);
+  for (std::size_t k = 0; k < n; ++k) x[k] = xy[2 * k], y[k] = xy[2 * k + 1];
+  if (pattern >= 3) state.SetLabel(simd_name(simd_level()));
   tbb::task_arena arena(threads);
-  const std::size_t chunk = (n + std::size_t(threads) - 1) / std::size_t(threads);
+  // Whole lattices per thread.
+  const std::size_t per_lattice = std::size_t(lattice(kBaselineR));
+  const std::size_t chunk = (n / per_lattice + std::size_t(threads) - 1) / std::size_t(threads) * per_lattice;
   for (auto _ : state) {
     arena.execute([&] {
       tbb::parallel_for(
           tbb::blocked_range<std::size_t>(0, n, chunk),
           [&](const auto& r) {
             float sum = 0;
-            for (std::size_t k = r.begin(); k < r.end(); ++k) {
-              float v;
-              if (pattern == 0 ? plane.sample(xy[2 * k], xy[2 * k + 1], &v)
-                               : plane.sample_gray(xy[2 * k], xy[2 * k + 1], &v))
-                sum += v;
+            if (pattern >= 3) {
+              // A call per 64 points or per lattice, as PRI calls it.
+              const std::size_t call = pattern == 3 ? 64 : lattice(kBaselineR);
+              for (std::size_t k = r.begin(); k < r.end(); k += call) {
+                const std::size_t m = std::min(call, r.end() - k);
+                if (sample_gray_points(plane, &x[k], &y[k], m, &vals[k])) sum += vals[k];
+              }
+            } else {
+              for (std::size_t k = r.begin(); k < r.end(); ++k) {
+                float v;
+                if (pattern == 0 ? plane.sample(xy[2 * k], xy[2 * k + 1], &v)
+                                 : plane.sample_gray(xy[2 * k], xy[2 * k + 1], &v))
+                  sum += v;
+              }
             }
             benchmark::DoNotOptimize(sum);
           },
@@ -321,7 +350,8 @@ static void BM_BilinearPeak(benchmark::State& state) {
 }
 BENCHMARK(BM_BilinearPeak)
     ->ArgNames({"threads", "pattern"})
-    ->Args({1, 0})->Args({1, 1})->Args({1, 2})->Args({2, 0})->Args({2, 1})->Args({2, 2})
+    ->Args({1, 0})->Args({1, 1})->Args({1, 2})->Args({1, 3})->Args({1, 4})
+    ->Args({2, 0})->Args({2, 1})->Args({2, 2})->Args({2, 3})->Args({2, 4})
     ->UseRealTime()->Unit(benchmark::kMillisecond);
 
 BENCHMARK_MAIN();

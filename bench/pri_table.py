@@ -17,7 +17,10 @@ for b in data["benchmarks"]:
 
 
 def args(name):
-    return dict((k, int(v)) for k, v in re.findall(r"(\w+):(\d+)", name))
+    a = dict((k, int(v)) for k, v in re.findall(r"(\w+):(\d+)", name))
+    if name.startswith("BM_Pri"):
+        a.setdefault("simd", 1)  # runs before the kernels' argument: the only kernels then
+    return a
 
 
 def find(prefix, **want):
@@ -41,7 +44,7 @@ print("| threads | views/face | spp | compute_pri: sampling+comparison | faces/s
       "end to end (selection) | baseline (OpenCV warp) samples/s | x baseline | "
       "bilinear peak samples/s | % of peak |")
 print("|---|---|---|---|---|---|---|---|---|---|---|")
-for b in sorted((b for n, b in med.items() if n.startswith("BM_Pri/")),
+for b in sorted((b for n, b in med.items() if n.startswith("BM_Pri/") and args(n)["simd"] == 1),
                 key=lambda b: (args(b["run_name"])["spp"] == 0, args(b["run_name"])["threads"],
                                args(b["run_name"])["views"])):
     a = args(b["run_name"])
@@ -69,7 +72,7 @@ print("|---|---|---|---|---|---|")
 peak1 = max((p for p in (find("BM_BilinearPeak", threads=1, pattern=pt) for pt in (0, 1, 2)) if p),
             key=cpu_rate, default=None)
 for v in (5, 10, 20):
-    b = find("BM_Pri", threads=1, views=v, spp=8)
+    b = find("BM_Pri", threads=1, views=v, spp=8, simd=1)
     base = find("BM_Baseline", threads=1, views=v)
     if not (b and base and peak1):
         continue

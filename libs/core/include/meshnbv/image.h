@@ -95,6 +95,8 @@ class FloatImage {
   float at(int x, int y, int c = 0) const {
     return data_[(std::size_t(y) * width_ + x) * channels_ + c];
   }
+  // The samples, row-major, channels interleaved.
+  const float* data() const { return data_.data(); }
   // Writes channels() values; false outside [0, W-1] x [0, H-1] or for NaN.
   bool sample(double x, double y, float* out) const;
   // The same for a one-channel plane, inline for the photo-consistency
