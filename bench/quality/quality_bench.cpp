@@ -104,14 +104,15 @@ json run_case(const test::QualityCase& c, Prepared& p) {
     std::ofstream csv(std::string(dump) + "_" + c.name + ".csv");
     csv << "face,error";
     for (const auto& [name, r] : results) csv << "," << name;
-    csv << ",views,pairs,texture,offset_signed,offset_precision,offset_pixel,cx,cy,cz,nx,ny,nz\n";
+    csv << ",views,pairs,texture,offset_signed,offset_precision,offset_pixel,offset_steady,cx,cy,cz,nx,ny,nz\n";
     const PriResult& off = results.at("offset");
     for (std::size_t f : faces) {
       csv << f << "," << p.error[f];
       for (const auto& [name, r] : results) csv << "," << r.pri[f];
       const Vec3 cc = p.scene.mesh.face_centroid(f), nn = p.scene.mesh.face_normal(f);
       csv << "," << off.pri_views[f] << "," << off.pri_pairs[f] << "," << off.pri_texture[f] << ","
-          << off.offset_signed[f] << "," << off.offset_precision[f] << "," << off.offset_pixel[f] << "," << cc.x()
+          << off.offset_signed[f] << "," << off.offset_precision[f] << "," << off.offset_pixel[f] << "," << off.offset_steady[f]
+          << "," << cc.x()
           << "," << cc.y() << "," << cc.z() << "," << nn.x() << "," << nn.y() << "," << nn.z() << "\n";
     }
   }

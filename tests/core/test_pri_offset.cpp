@@ -96,3 +96,32 @@ TEST(PriOffset, GrowsWithTheDisplacement) {
     previous = m;
   }
 }
+
+// Beyond the range the sweep's least cost is at its end, and the cost falls
+// steadily to it (offset_steady): most interior faces of the plane moved by
+// 0.2 m (5.5-7 px) are marked so, and keep at least most of the range
+// (3 px = 0.1 m at the centre); on the true plane the least cost is inside
+// the sweep and hardly any face is marked.
+TEST(PriOffset, MarksASteadyFallToTheEndBeyondTheRange) {
+  const Scene s = rendered_plane();
+  for (double d : {0.0, 0.2}) {
+    const PriResult r = compute_pri(moved(s, d), offset_options());
+    ASSERT_EQ(r.offset_steady.size(), r.pri.size());
+    std::size_t interior = 0, steady = 0;
+    for (std::size_t f = 0; f < r.pri.size(); ++f) {
+      const Vec3 c = s.mesh.face_centroid(f);
+      if (r.status[f] != FaceStatus::Observed || std::abs(c.x()) > 1.2 || std::abs(c.y()) > 1.2) continue;
+      ++interior;
+      const float mark = r.offset_steady[f];
+      EXPECT_TRUE(mark == 0.0f || mark == 1.0f) << f;
+      if (mark == 1.0f) {
+        ++steady;
+        EXPECT_EQ(r.offset_precision[f], 0.0f) << "a steady end has no curvature: face " << f;
+      }
+    }
+    ASSERT_GT(interior, 100u);
+    const double share = double(steady) / double(interior);
+    if (d == 0.0) EXPECT_LT(share, 0.05) << "true plane";
+    else EXPECT_GT(share, 0.8) << "plane moved by " << d << " m";  // measured 0.96 (true plane: 0)
+  }
+}

@@ -50,6 +50,7 @@ void expect_identical(const PriResult& a, const PriResult& b) {
   for (std::size_t f = 0; f < a.offset_signed.size(); ++f) {
     EXPECT_TRUE(same_bits(a.offset_signed[f], b.offset_signed[f])) << f;
     EXPECT_TRUE(same_bits(a.offset_precision[f], b.offset_precision[f])) << f;
+    EXPECT_TRUE(same_bits(a.offset_steady[f], b.offset_steady[f])) << f;
   }
   EXPECT_EQ(a.observed, b.observed);
   EXPECT_EQ(a.unobserved, b.unobserved);

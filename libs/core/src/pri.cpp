@@ -129,6 +129,12 @@ constexpr double kOffsetSpacingPower = 1.5;
 // The least residual cost (NCC error) that the offset's precision divides
 // by: rho = 0.998; a perfect match is not infinitely precise.
 constexpr double kMinResidualCost = 1e-3;
+// A sweep whose least cost is at an end counts as evidence of an error
+// beyond the range only when its cost falls steadily from the face's own
+// position to that end: no step back up by more than this share of the
+// whole fall (bench/results/quality: such ends are where the error is
+// beyond the range; wavering ones are failed matches on weak texture).
+constexpr double kSteadyRise = 0.1;
 
 double projected_area(const Vec2& a, const Vec2& b, const Vec2& c) {
   return 0.5 * std::abs((b - a).x() * (c - a).y() - (b - a).y() * (c - a).x());
@@ -832,6 +838,7 @@ struct PairErrors {
   std::size_t pairs = 0;  // pairs that count (NCC skips textureless ones)
   double curvature = 0;   // offset: cost curvature at the minimum (per pixel^2)
   double best_cost = 0;   // offset: the least cost
+  bool steady = false;    // offset: least cost at an end, reached by a steady fall (kSteadyRise)
 };
 
 // The offset measure on a face's patches (each one lattice of n floats per
@@ -840,7 +847,8 @@ struct PairErrors {
 // against the reference, then the hypothesis of least error, refined by a
 // parabola through it and its neighbours. Sets e.sum to the offset in
 // pixels of the fastest view (signed), e.curvature and e.best_cost at that
-// minimum (curvature 0 at an end of the sweep), and e.pairs to the views
+// minimum (curvature 0 at an end of the sweep), e.steady where that end is
+// reached by a steady fall of the cost, and e.pairs to the views
 // compared at zero offset; e.pairs = 0 when the reference or every other
 // view is textureless at zero offset.
 PairErrors offset_errors(const std::vector<const float*>& patches, std::size_t ref, std::size_t n,
@@ -877,6 +885,13 @@ PairErrors offset_errors(const std::vector<const float*>& patches, std::size_t r
     const double a = (d2 - d0) / (x2 - x0);  // curvature / 2
     if (a > 0) x = std::clamp(0.5 * (x + x2 - d2 / a), x0, x2);
     e.curvature = std::max(a, 0.0);
+  }
+  if (best == 0 || best + 1 == hypotheses) {
+    const int step = best == 0 ? -1 : 1;
+    const double tolerance = kSteadyRise * (c[half] - c[best]);
+    e.steady = true;
+    for (int k = half; k != best; k += step)
+      if (!(c[k + step] <= c[k] + tolerance)) e.steady = false;  // also false on a missing cost
   }
   e.best_cost = c[best];
   e.sum = x;  // pixels of the fastest view
@@ -941,6 +956,7 @@ void score_block(const PriInputs& in, const SampleBlock& block, PriResult* resul
       result->pri[f] = float(e.sum * fv[f].step);
       result->offset_signed[f] = result->pri[f];
       result->offset_pixel[f] = float(fv[f].pixel);
+      result->offset_steady[f] = e.steady ? 1.0f : 0.0f;
       // The estimate's precision (inverse variance, up to a common factor)
       // by the Laplace approximation of the sweep: the cost's curvature at
       // its minimum times the comparisons made (views x samples) over the
@@ -1080,6 +1096,7 @@ void support_faces(const TriangleMesh& mesh, const VertexFaces& vf, std::size_t 
 // (sigma = support_radius pixels of the face's reference view, on the
 // distance between centroids), each weighted by a Gaussian of that distance
 // times its estimate's `precision` (score_block); PRI is its magnitude.
+// Faces at an end of the sweep vote for keeping it where `offset_steady`.
 void smooth_offsets(const TriangleMesh& mesh, const PriOptions& o, PriResult* result) {
   const std::size_t F = mesh.num_faces();
   const std::vector<float>& signed_offset = result->offset_signed;
@@ -1105,12 +1122,13 @@ void smooth_offsets(const TriangleMesh& mesh, const PriOptions& o, PriResult* re
         sum += w * signed_offset[g];
         weight += w;
         all += gauss;
-        if (!(precision[g] > 0)) at_end += gauss;
+        if (!(precision[g] > 0) && result->offset_steady[g] > 0) at_end += gauss;
       }
       double value = weight > 0 ? std::abs(sum / weight) : std::abs(signed_offset[f]);
       // Where most of the support has its best offset at an end of the
-      // sweep (no minimum inside it: the error exceeds the range, or
-      // nothing matches), such a face keeps that end if its own evidence
+      // sweep, reached by a steady fall of the cost (the error exceeds the
+      // range; a wavering fall is a failed match), such a face keeps that
+      // end if its own evidence
       // holds (3 views or more, texture at least kLowTexture): the few
       // neighbours with a minimum cannot vouch for a smaller error. An
       // isolated face at an end, or one on two views or low texture, is a
@@ -1148,6 +1166,7 @@ void init_result(PriResult* r, std::size_t n, const PriOptions& options) {
   r->offset_signed.assign(m, std::numeric_limits<float>::quiet_NaN());
   r->offset_precision.assign(m, 0.0f);
   r->offset_pixel.assign(m, 0.0f);
+  r->offset_steady.assign(m, 0.0f);
 }
 
 // Face `from` of `a` into face `to` of `b` (every per-face array).
@@ -1163,6 +1182,7 @@ void copy_face(const PriResult& a, std::size_t from, PriResult* b, std::size_t t
     b->offset_signed[to] = a.offset_signed[from];
     b->offset_precision[to] = a.offset_precision[from];
     b->offset_pixel[to] = a.offset_pixel[from];
+    b->offset_steady[to] = a.offset_steady[from];
   }
 }
 

@@ -123,6 +123,7 @@ TriangleMesh mesh_with_pri(const TriangleMesh& mesh, const PriResult& result) {
     out.set_face_attribute("pri_offset_signed", result.offset_signed);
     out.set_face_attribute("pri_offset_precision", result.offset_precision);
     out.set_face_attribute("pri_offset_pixel", result.offset_pixel);
+    out.set_face_attribute("pri_offset_steady", result.offset_steady);
   }
   const PriSummary s = summarize_pri(result, 0);
   double lo = 0, hi = 1;

@@ -121,6 +121,7 @@ PriPrevious read_pri_previous(const std::string& path) {
     r.offset_signed = need("pri_offset_signed");
     r.offset_precision = need("pri_offset_precision");
     r.offset_pixel = need("pri_offset_pixel");
+    r.offset_steady = need("pri_offset_steady");
   }
   r.status.resize(F);
   for (std::size_t f = 0; f < F; ++f)

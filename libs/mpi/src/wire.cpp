@@ -298,6 +298,7 @@ std::string write_pri_parts(const std::vector<PriPart>& parts) {
     w.put_vector(v.offset_signed);
     w.put_vector(v.offset_precision);
     w.put_vector(v.offset_pixel);
+    w.put_vector(v.offset_steady);
     w.put(std::uint64_t(v.views_used));
     w.put(std::uint64_t(v.recomputed));
     w.put(std::uint64_t(v.images_decoded));
@@ -323,6 +324,7 @@ std::vector<PriPart> read_pri_parts(const std::string& bytes) {
     v.offset_signed = r.get_vector<float>();
     v.offset_precision = r.get_vector<float>();
     v.offset_pixel = r.get_vector<float>();
+    v.offset_steady = r.get_vector<float>();
     v.views_used = std::size_t(r.get<std::uint64_t>());
     v.recomputed = std::size_t(r.get<std::uint64_t>());
     v.images_decoded = std::size_t(r.get<std::uint64_t>());
@@ -330,7 +332,8 @@ std::vector<PriPart> read_pri_parts(const std::string& bytes) {
     for (std::size_t size : {v.pri.size(), v.pri_views.size(), v.status.size(), v.pri_pairs.size(),
                              v.pri_samples.size(), v.pri_texture.size(), v.evidence_key.size()})
       if (size != m) r.fail("a part's arrays differ in length from its faces");
-    for (std::size_t size : {v.offset_signed.size(), v.offset_precision.size(), v.offset_pixel.size()})
+    for (std::size_t size : {v.offset_signed.size(), v.offset_precision.size(), v.offset_pixel.size(),
+                              v.offset_steady.size()})
       if (size != 0 && size != m) r.fail("a part's offset arrays differ in length from its faces");
     for (FaceStatus st : v.status)
       if (std::uint8_t(st) > 2) r.fail("unknown face status");

@@ -83,9 +83,11 @@ struct PriResult {
   std::vector<float> pri_texture;  // texture strength: standard deviation of the samples
                                    // (intensity in [0, 1]), mean over the compared views
   // offset: each face's signed offset before the support smoothing, its
-  // precision, and the scene units per pixel at its centroid in its
-  // reference view (what smooth_offsets reads); empty for ssd and ncc.
-  std::vector<float> offset_signed, offset_precision, offset_pixel;
+  // precision, the scene units per pixel at its centroid in its reference
+  // view, and 1 where the sweep's least cost is at an end reached by a
+  // steady fall of the cost, else 0 (what smooth_offsets reads); empty for
+  // ssd and ncc.
+  std::vector<float> offset_signed, offset_precision, offset_pixel, offset_steady;
   // What each face's value rests on, as one 64-bit key (pri_evidence_key):
   // the options and, in order, the identity of every view compared. The
   // same face (identical vertex positions, in order) with the same key has

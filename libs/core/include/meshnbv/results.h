@@ -44,7 +44,7 @@ PriEvidence pri_evidence(const PriResult& result, double low_texture_below = kLo
 // observed PRI. For incremental PRI (`meshnbv pri --previous`): the
 // evidence key in "pri_key_0/1/2" (bits 0-21, 22-42, 43-63 as exact
 // integers), and with the offset measure "pri_offset_signed",
-// "pri_offset_precision", "pri_offset_pixel" (PriResult).
+// "pri_offset_precision", "pri_offset_pixel", "pri_offset_steady" (PriResult).
 TriangleMesh mesh_with_pri(const TriangleMesh& mesh, const PriResult& result);
 inline constexpr const char* kPriKeyAttributes[3] = {"pri_key_0", "pri_key_1", "pri_key_2"};
 // The PLY comment lines that carry PriResult::options_key and view_keys
