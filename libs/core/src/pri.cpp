@@ -132,8 +132,8 @@ constexpr double kMinResidualCost = 1e-3;
 // A sweep whose least cost is at an end counts as evidence of an error
 // beyond the range only when its cost falls steadily from the face's own
 // position to that end: no step back up by more than this share of the
-// whole fall (bench/results/quality: such ends are where the error is
-// beyond the range; wavering ones are failed matches on weak texture).
+// whole fall (docs/pri.md, "Steady ends": such ends are where the error
+// is beyond the range; wavering ones are failed matches on weak texture).
 constexpr double kSteadyRise = 0.1;
 
 double projected_area(const Vec2& a, const Vec2& b, const Vec2& c) {
@@ -1122,17 +1122,16 @@ void smooth_offsets(const TriangleMesh& mesh, const PriOptions& o, PriResult* re
         sum += w * signed_offset[g];
         weight += w;
         all += gauss;
-        if (!(precision[g] > 0) && result->offset_steady[g] > 0) at_end += gauss;
+        if (result->offset_steady[g] > 0) at_end += gauss;  // an end (no curvature), reached steadily
       }
       double value = weight > 0 ? std::abs(sum / weight) : std::abs(signed_offset[f]);
       // Where most of the support has its best offset at an end of the
       // sweep, reached by a steady fall of the cost (the error exceeds the
       // range; a wavering fall is a failed match), such a face keeps that
-      // end if its own evidence
-      // holds (3 views or more, texture at least kLowTexture): the few
-      // neighbours with a minimum cannot vouch for a smaller error. An
-      // isolated face at an end, or one on two views or low texture, is a
-      // failed match among good ones and is smoothed.
+      // end if its own evidence holds (3 views or more, texture at least
+      // kLowTexture): the few neighbours with a minimum cannot vouch for a
+      // smaller error. An isolated face at an end, or one on two views or
+      // low texture, is a failed match among good ones and is smoothed.
       const bool evidence = result->pri_pairs[f] >= 2 && result->pri_texture[f] >= kLowTexture;
       if (!(precision[f] > 0) && evidence && at_end >= 0.5 * all)
         value = std::max(value, double(std::abs(signed_offset[f])));
