@@ -83,9 +83,8 @@ void add_suggest_command(CLI::App& app) {
     }, a->overwrite);
     for (const auto& s : r.suggestions) {
       const Vec3 c = s.camera.center();
-      std::cout << s.label << "  energy " << s.energy.total << "  (occlusion " << s.energy.occlusion
-                << ", focus " << s.energy.focus << ", parallax " << s.energy.parallax
-                << ", incidence " << s.energy.incidence << ")  centre (" << c.x() << ", " << c.y()
+      std::cout << s.label << "  energy " << s.energy.total << "  (" << energy_terms_text(s.energy)
+                << ")  centre (" << c.x() << ", " << c.y()
                 << ", " << c.z() << ")  sees " << s.seen_faces.size() << "/"
                 << r.regions[std::size_t(s.region)].faces.size() << " worst faces  [" << s.source << "]\n";
     }

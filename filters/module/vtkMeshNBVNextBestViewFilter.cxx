@@ -63,6 +63,8 @@ void FillTable(vtkTable* table, const meshnbv::SuggestResult& result)
   auto* focus = AddColumn<vtkDoubleArray>(table, "focus");
   auto* parallax = AddColumn<vtkDoubleArray>(table, "parallax");
   auto* incidence = AddColumn<vtkDoubleArray>(table, "incidence");
+  auto* refinement = AddColumn<vtkDoubleArray>(table, "refinement");
+  auto* exploration = AddColumn<vtkDoubleArray>(table, "exploration");
   auto* seen = AddColumn<vtkIntArray>(table, "seen_faces");
   for (const meshnbv::Suggestion& s : result.suggestions)
   {
@@ -92,6 +94,8 @@ void FillTable(vtkTable* table, const meshnbv::SuggestResult& result)
     focus->InsertNextValue(s.energy.focus);
     parallax->InsertNextValue(s.energy.parallax);
     incidence->InsertNextValue(s.energy.incidence);
+    refinement->InsertNextValue(s.energy.refinement);
+    exploration->InsertNextValue(s.energy.exploration);
     seen->InsertNextValue(static_cast<int>(s.seen_faces.size()));
   }
 }
@@ -141,6 +145,13 @@ meshnbv::SuggestOptions RawOptionsOf(vtkMeshNBVNextBestViewFilter* f)
   }
   o.top = f->GetTop();
   o.worst_k = f->GetWorstFaces();
+  if (f->GetEnergy() == vtkMeshNBVNextBestViewFilter::RECONSTRUCTABILITY)
+  {
+    o.energy_kind = meshnbv::EnergyKind::Reconstructability;
+  }
+  o.gain.target = f->GetGainTarget();
+  o.gain.exploration_weight = f->GetExplorationWeight();
+  o.gain.clusters = f->GetGainClusters();
   o.energy.weights = { f->GetWeightOcclusion(), f->GetWeightFocus(), f->GetWeightParallax(),
     f->GetWeightIncidence() };
   o.energy.penalty = f->GetPenalty();
@@ -167,6 +178,12 @@ meshnbv::SuggestOptions OptionsOf(vtkMeshNBVNextBestViewFilter* f)
     throw meshnbv::Error("Candidates must be 0 (GIVEN), 1 (SAMPLED) or 2 (REFINED), got " +
       std::to_string(candidates));
   }
+  const int energy = f->GetEnergy();
+  if (energy < 0 || energy > 1)
+  {
+    throw meshnbv::Error(
+      "Energy must be 0 (PAPER) or 1 (RECONSTRUCTABILITY), got " + std::to_string(energy));
+  }
   meshnbv::SuggestOptions o = RawOptionsOf(f);
   o.check();
   return o;
@@ -185,6 +202,10 @@ vtkMeshNBVNextBestViewFilter::vtkMeshNBVNextBestViewFilter()
   this->Candidates = ToCandidates(defaults.mode);
   this->Top = defaults.top;
   this->WorstFaces = defaults.worst_k;
+  this->Energy = defaults.energy_kind == meshnbv::EnergyKind::Reconstructability ? RECONSTRUCTABILITY : PAPER;
+  this->GainTarget = defaults.gain.target;
+  this->ExplorationWeight = defaults.gain.exploration_weight;
+  this->GainClusters = defaults.gain.clusters;
   this->WeightOcclusion = defaults.energy.weights[0];
   this->WeightFocus = defaults.energy.weights[1];
   this->WeightParallax = defaults.energy.weights[2];
@@ -205,6 +226,12 @@ vtkMeshNBVNextBestViewFilter::vtkMeshNBVNextBestViewFilter()
 
 //------------------------------------------------------------------------------
 vtkMeshNBVNextBestViewFilter::~vtkMeshNBVNextBestViewFilter() = default;
+
+//------------------------------------------------------------------------------
+const char* vtkMeshNBVNextBestViewFilter::GetEnergyAsString()
+{
+  return this->Energy == RECONSTRUCTABILITY ? "reconstructability" : "paper";
+}
 
 //------------------------------------------------------------------------------
 const char* vtkMeshNBVNextBestViewFilter::GetCandidatesAsString()

@@ -92,6 +92,37 @@ public:
   vtkGetMacro(WorstFaces, int);
   ///@}
 
+  enum EnergyType
+  {
+    PAPER = 0,             // the SPEC's energy over the worst region
+    RECONSTRUCTABILITY = 1 // the whole-mesh reconstructability gain (docs/nbv.md)
+  };
+
+  ///@{
+  /**
+   * What a candidate is scored by (`energy`): PAPER or RECONSTRUCTABILITY.
+   */
+  vtkSetMacro(Energy, int);
+  vtkGetMacro(Energy, int);
+  void SetEnergyToPaper() { this->SetEnergy(PAPER); }
+  void SetEnergyToReconstructability() { this->SetEnergy(RECONSTRUCTABILITY); }
+  const char* GetEnergyAsString();
+  ///@}
+
+  ///@{
+  /**
+   * RECONSTRUCTABILITY: the target a face needs (`gain_target`), the weight
+   * of unobserved and boundary faces (`exploration_weight`) and the number
+   * of face clusters scored (`gain_clusters`, 0 = every face).
+   */
+  vtkSetMacro(GainTarget, double);
+  vtkGetMacro(GainTarget, double);
+  vtkSetMacro(ExplorationWeight, double);
+  vtkGetMacro(ExplorationWeight, double);
+  vtkSetMacro(GainClusters, int);
+  vtkGetMacro(GainClusters, int);
+  ///@}
+
   ///@{
   /**
    * Energy weights m1..m4 of the occlusion, focus, parallax and incidence
@@ -230,6 +261,10 @@ protected:
   int Candidates;
   int Top;
   int WorstFaces;
+  int Energy;
+  double GainTarget;
+  double ExplorationWeight;
+  int GainClusters;
   double WeightOcclusion;
   double WeightFocus;
   double WeightParallax;

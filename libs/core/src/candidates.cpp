@@ -179,16 +179,25 @@ PinholeCamera pose(const PinholeCamera& start, const PoseFrame& f, const Vec3& u
 PinholeCamera refine_candidate(const PinholeCamera& start, const Vec3& up,
                                const EnergyEvaluator& energy, const SafetyChecker& safety,
                                const RefineOptions& o, std::size_t* evaluations) {
+  return refine_candidate(
+      start, up, [&](const PinholeCamera& c) { return energy.evaluate(c).total; }, energy.region().centroid,
+      safety, o, evaluations);
+}
+
+PinholeCamera refine_candidate(const PinholeCamera& start, const Vec3& up,
+                               const std::function<double(const PinholeCamera&)>& energy,
+                               const Vec3& target, const SafetyChecker& safety, const RefineOptions& o,
+                               std::size_t* evaluations) {
   o.check();
   const Vec3 c0 = start.center();
   std::size_t evaluated = 0;
   PoseFrame frame{start.forward(), start.right(), -start.down()};
-  const double scale = std::max(1e-9, (energy.region().centroid - c0).norm());
+  const double scale = std::max(1e-9, (target - c0).norm());
   auto cost = [&](const Params& p) {
     const Vec3 c(p[0], p[1], p[2]);
     if (!safety.safe(c)) return std::numeric_limits<double>::infinity();
     ++evaluated;
-    return -energy.evaluate(pose(start, frame, up, p)).total;
+    return -energy(pose(start, frame, up, p));
   };
   // Nelder-Mead (standard coefficients), 6 vertices in 5-D.
   std::array<Params, 6> s;

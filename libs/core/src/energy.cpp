@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <sstream>
 
 #include "meshnbv/options.h"
 #include "meshnbv/planner.h"
@@ -44,6 +45,16 @@ void EnergyOptions::check() const {
   as_suggest.energy = *this;
   check_options(as_suggest, suggest_option_table());
   visibility.check();
+}
+
+std::string energy_terms_text(const EnergyTerms& t) {
+  std::ostringstream out;
+  if (t.whole_mesh)
+    out << "refinement " << t.refinement << ", exploration " << t.exploration;
+  else
+    out << "occlusion " << t.occlusion << ", focus " << t.focus << ", parallax " << t.parallax
+        << ", incidence " << t.incidence;
+  return out.str();
 }
 
 double EnergyOptions::kappa() const {

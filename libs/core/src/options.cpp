@@ -293,6 +293,33 @@ const OptionTable<SuggestOptions>& suggest_option_table() {
           "energy scores",
           closed(1, 10000), [](const O& o) { return o.worst_k; },
           [](O& o, std::int64_t x) { o.worst_k = clamp_to_int(x); }),
+      choice_option<O>(
+          "energy", "Energy",
+          "What a candidate is scored by. paper: the SPEC's energy (occlusion, focus, parallax, "
+          "incidence) over the vertices of the K worst faces; reconstructability: the share of the "
+          "whole mesh's weighted reconstructability deficit the view removes (Smith et al. 2018's "
+          "pair heuristic, each face weighted by its PRI rank, unobserved and boundary faces by the "
+          "exploration weight; docs/nbv.md)",
+          {"paper", "reconstructability"}, [](const O& o) { return energy_kind_name(o.energy_kind); },
+          [](O& o, const std::string& w) { o.energy_kind = parse_energy_kind(w); }),
+      real_option<O>(
+          "gain_target", "Reconstructability target",
+          "reconstructability: the reconstructability at which a face needs no more views (a good "
+          "pair of views adds up to about 1)",
+          left_open(0, 1000), [](const O& o) { return o.gain.target; },
+          [](O& o, double x) { o.gain.target = x; }),
+      real_option<O>(
+          "exploration_weight", "Exploration weight",
+          "reconstructability: the weight of an unobserved face or one on the mesh's boundary; "
+          "observed faces weigh their PRI rank in (0, 1]",
+          closed(0, 100), [](const O& o) { return o.gain.exploration_weight; },
+          [](O& o, double x) { o.gain.exploration_weight = x; }),
+      int_option<O>(
+          "gain_clusters", "Face clusters",
+          "reconstructability: faces are scored in about this many compact clusters of one facing "
+          "(0 = every face on its own: exact, slower)",
+          closed(0, 10000000), [](const O& o) { return std::int64_t(o.gain.clusters); },
+          [](O& o, std::int64_t x) { o.gain.clusters = clamp_to_int(x); }),
       weight("weight_occlusion", "Weight occlusion (m1)", "occlusion", 0),
       weight("weight_focus", "Weight focus (m2)", "focus", 1),
       weight("weight_parallax", "Weight parallax (m3)", "parallax", 2),

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <memory>
 #include <set>
 
 #include <tbb/blocked_range.h>
@@ -50,12 +51,18 @@ struct Scored {
 
 bool ranked_before(const Scored& a, const Scored& b) { return a.energy.total > b.energy.total; }
 
-// Energies in parallel (or by the caller's scorer); stable order: best
-// energy first, ties by input order.
-std::vector<Scored> score(const std::vector<Scored>& in, const EnergyEvaluator& e, const TriangleMesh& mesh,
-                          const EnergyOptions& options, const CandidateScorer& scorer) {
+// Energies in parallel (or by the caller's scorer, for the paper's
+// energy); stable order: best energy first, ties by input order. `gain`
+// non-null: the whole-mesh energy instead of `e`.
+std::vector<Scored> score(const std::vector<Scored>& in, const EnergyEvaluator& e, const GainEvaluator* gain,
+                          const TriangleMesh& mesh, const EnergyOptions& options,
+                          const CandidateScorer& scorer) {
   std::vector<Scored> out = in;
-  if (scorer) {
+  if (gain) {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, out.size()), [&](const auto& r) {
+      for (std::size_t i = r.begin(); i < r.end(); ++i) out[i].energy = gain->evaluate(out[i].camera);
+    });
+  } else if (scorer) {
     std::vector<PinholeCamera> cameras;
     cameras.reserve(out.size());
     for (const Scored& s : out) cameras.push_back(s.camera);
@@ -140,16 +147,18 @@ std::vector<Scored> sampled_candidates(const PlannerContext& ctx, const WorstReg
 
 // Refined mode: the best scored poses improved by the optimiser, ranked
 // with the others; the energy evaluations are added to `evaluated`.
-void add_refined(const PlannerContext& ctx, const EnergyEvaluator& energy, std::vector<Scored>* scored,
-                 std::size_t* evaluated) {
+void add_refined(const PlannerContext& ctx, const EnergyEvaluator& energy, const GainEvaluator* gain,
+                 std::vector<Scored>* scored, std::size_t* evaluated) {
   const std::size_t n = std::min<std::size_t>(std::size_t(ctx.o.refine_best), scored->size());
   std::vector<Scored> refined(n);
   std::vector<std::size_t> evaluations(n, 0);
+  auto evaluate = [&](const PinholeCamera& c) { return gain ? gain->evaluate(c) : energy.evaluate(c); };
   tbb::parallel_for(std::size_t(0), n, [&](std::size_t i) {
     refined[i] = (*scored)[i];
-    refined[i].camera =
-        refine_candidate((*scored)[i].camera, ctx.up, energy, ctx.safety, ctx.o.refine, &evaluations[i]);
-    refined[i].energy = energy.evaluate(refined[i].camera);
+    refined[i].camera = refine_candidate(
+        (*scored)[i].camera, ctx.up, [&](const PinholeCamera& c) { return evaluate(c).total; },
+        energy.region().centroid, ctx.safety, ctx.o.refine, &evaluations[i]);
+    refined[i].energy = evaluate(refined[i].camera);
     refined[i].label = candidate_mode_name(CandidateMode::Refined);
   });
   // The energy evaluations made: the optimiser's, plus the final pose's
@@ -212,8 +221,18 @@ SuggestResult suggest_views(const Scene& scene, const std::vector<float>& pri,
     std::vector<Vec3> existing;
     for (const auto& c : existing_cams) existing.push_back(c.center());
 
+    // The whole-mesh energy: one evaluator for the batch, each pick added to
+    // it; its region (what sampled candidates look at) is the K faces of
+    // largest weighted deficit, chosen again after every pick.
+    std::unique_ptr<GainEvaluator> gain;
+    if (o.energy_kind == EnergyKind::Reconstructability)
+    {
+      GainOptions go = o.gain;
+      go.visibility = o.energy.visibility;
+      gain = std::make_unique<GainEvaluator>(mesh, caster, pri, existing_cams, go);
+    }
     std::vector<char> done(mesh.num_faces(), 0);
-    WorstRegion region = worst_region(mesh, pri, o.worst_k);
+    WorstRegion region = gain ? worst_region(mesh, gain->face_deficits(), o.worst_k) : worst_region(mesh, pri, o.worst_k);
     result.regions.push_back(region);
     std::set<int> region_seen;
     const double viewing_distance = median_viewing_distance(existing_cams, caster, region.centroid);
@@ -222,11 +241,12 @@ SuggestResult suggest_views(const Scene& scene, const std::vector<float>& pri,
       const EnergyEvaluator energy(mesh, caster, region, existing, o.energy);
       std::vector<Scored> scored =
           o.mode == CandidateMode::Given
-              ? score(pool, energy, mesh, o.energy, scorer)
-              : score(sampled_candidates(ctx, region, viewing_distance, pick, &result), energy, mesh, o.energy,
-                      scorer);
+              ? score(pool, energy, gain.get(), mesh, o.energy, scorer)
+              : score(sampled_candidates(ctx, region, viewing_distance, pick, &result), energy, gain.get(), mesh,
+                      o.energy, scorer);
       result.candidates_evaluated += scored.size();
-      if (o.mode == CandidateMode::Refined) add_refined(ctx, energy, &scored, &result.candidates_evaluated);
+      if (o.mode == CandidateMode::Refined)
+        add_refined(ctx, energy, gain.get(), &scored, &result.candidates_evaluated);
       if (pick == 0) {
         const std::size_t keep = o.mode == CandidateMode::Given ? scored.size() : std::min<std::size_t>(50, scored.size());
         for (std::size_t i = 0; i < keep; ++i)
@@ -235,6 +255,7 @@ SuggestResult suggest_views(const Scene& scene, const std::vector<float>& pri,
       const Scored& best = scored.front();
       result.suggestions.push_back(
           suggestion_of(ctx, best, pick, int(result.regions.size()) - 1, region, energy));
+      if (gain) result.suggestions.back().improved_faces = gain->improved_faces(best.camera, 100);
       const Suggestion& s = result.suggestions.back();
       report_progress(progress, double(pick + 1) / o.top, "suggest");
 
@@ -246,6 +267,15 @@ SuggestResult suggest_views(const Scene& scene, const std::vector<float>& pri,
                    pool.end());
       if (pick + 1 == o.top) break;
       if (o.mode == CandidateMode::Given && pool.empty()) break;
+      if (gain) {
+        gain->add_view(best.camera);
+        const WorstRegion next = worst_region(mesh, gain->face_deficits(), o.worst_k);
+        if (next.faces != region.faces) {
+          region = next;
+          result.regions.push_back(region);
+        }
+        continue;
+      }
       region_seen.insert(s.seen_faces.begin(), s.seen_faces.end());
       if (region_seen.size() == region.faces.size()) {
         if (!next_region(ctx, pri, &done, &region)) break;

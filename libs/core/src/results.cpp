@@ -30,6 +30,8 @@ json camera_json(const PinholeCamera& c) {
 }
 
 json energy_json(const EnergyTerms& e) {
+  if (e.whole_mesh)
+    return {{"total", e.total}, {"refinement", e.refinement}, {"exploration", e.exploration}};
   return {{"total", e.total}, {"occlusion", e.occlusion}, {"focus", e.focus},
           {"parallax", e.parallax}, {"incidence", e.incidence}};
 }
@@ -243,7 +245,7 @@ std::string suggestions_json(const SuggestResult& r, const SuggestOptions& o,
                        {"mean_normal", vec(r.regions[i].mean_normal)}});
   j["regions"] = regions;
   json suggestions = json::array();
-  for (const auto& s : r.suggestions)
+  for (const auto& s : r.suggestions) {
     suggestions.push_back({{"rank", s.rank},
                            {"label", s.label},
                            {"source", s.source},
@@ -253,6 +255,8 @@ std::string suggestions_json(const SuggestResult& r, const SuggestOptions& o,
                            {"look_at", vec(s.look_at)},
                            {"energy", energy_json(s.energy)},
                            {"seen_faces", s.seen_faces}});
+    if (s.energy.whole_mesh) suggestions.back()["improved_faces"] = s.improved_faces;
+  }
   j["suggestions"] = suggestions;
   json ranking = json::array();
   for (std::size_t i = 0; i < r.ranking.size(); ++i)

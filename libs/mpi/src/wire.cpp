@@ -428,15 +428,20 @@ std::string write_energies(const std::vector<EnergyTerms>& energies) {
   Writer w(kEnergies);
   w.put(std::uint64_t(energies.size()));
   for (const EnergyTerms& e : energies)
-    for (double x : {e.occlusion, e.focus, e.parallax, e.incidence, e.total}) w.put(x);
+    for (double x : {e.occlusion, e.focus, e.parallax, e.incidence, e.refinement, e.exploration, e.total,
+                     e.whole_mesh ? 1.0 : 0.0})
+      w.put(x);
   return w.take();
 }
 
 std::vector<EnergyTerms> read_energies(const std::string& bytes) {
   Reader r(bytes, kEnergies, "energies");
-  std::vector<EnergyTerms> out(std::size_t(r.get_count(40)));
-  for (EnergyTerms& e : out)
-    for (double* x : {&e.occlusion, &e.focus, &e.parallax, &e.incidence, &e.total}) *x = r.get<double>();
+  std::vector<EnergyTerms> out(std::size_t(r.get_count(64)));
+  for (EnergyTerms& e : out) {
+    for (double* x : {&e.occlusion, &e.focus, &e.parallax, &e.incidence, &e.refinement, &e.exploration, &e.total})
+      *x = r.get<double>();
+    e.whole_mesh = r.get<double>() != 0;
+  }
   r.finish();
   return out;
 }

@@ -201,16 +201,26 @@ void write_viewer_section(std::ostream& h, const report_detail::ViewerFiles& v) 
 
 void write_suggestions_section(std::ostream& h, const std::string& folder, const SuggestResult& sug,
                                int n_views) {
+  // The terms of the energy that scored them: the paper's four, or the
+  // whole-mesh energy's two (shares of the mesh's deficit, in percent).
+  const bool whole_mesh = !sug.suggestions.empty() && sug.suggestions.front().energy.whole_mesh;
   h << "<h2>Where to take the next photos</h2>\n<table><tr><th>rank</th><th class=l>label</th><th class=l>from</th>"
-       "<th>region</th><th>energy</th><th>occlusion</th><th>focus</th><th>parallax</th><th>incidence</th>"
-       "<th>worst faces seen</th><th class=l>centre</th></tr>\n";
+       "<th>region</th><th>energy</th>"
+    << (whole_mesh ? "<th>refinement (%)</th><th>exploration (%)</th>"
+                   : "<th>occlusion</th><th>focus</th><th>parallax</th><th>incidence</th>")
+    << "<th>worst faces seen</th><th class=l>centre</th></tr>\n";
   for (const auto& s : sug.suggestions) {
     const Vec3 c = s.camera.center();
     h << "<tr><td>" << s.rank << "</td><td class=l>" << html_escape(s.label) << "</td><td class=l>"
-      << html_escape(s.source) << "</td><td>" << s.region << "</td><td>" << fixed(s.energy.total, 2) << "</td><td>"
-      << fixed(s.energy.occlusion, 2) << "</td><td>" << fixed(s.energy.focus, 2) << "</td><td>"
-      << fixed(s.energy.parallax, 2) << "</td><td>" << fixed(s.energy.incidence, 2) << "</td><td>"
-      << s.seen_faces.size() << " / " << sug.regions[std::size_t(s.region)].faces.size() << "</td><td class=l>("
+      << html_escape(s.source) << "</td><td>" << s.region << "</td><td>";
+    if (whole_mesh)
+      h << fixed(100 * s.energy.total, 2) << "</td><td>" << fixed(100 * s.energy.refinement, 2) << "</td><td>"
+        << fixed(100 * s.energy.exploration, 2) << "</td><td>";
+    else
+      h << fixed(s.energy.total, 2) << "</td><td>" << fixed(s.energy.occlusion, 2) << "</td><td>"
+        << fixed(s.energy.focus, 2) << "</td><td>" << fixed(s.energy.parallax, 2) << "</td><td>"
+        << fixed(s.energy.incidence, 2) << "</td><td>";
+    h << s.seen_faces.size() << " / " << sug.regions[std::size_t(s.region)].faces.size() << "</td><td class=l>("
       << fixed(c.x()) << ", " << fixed(c.y()) << ", " << fixed(c.z()) << ")</td></tr>\n";
   }
   h << "</table>\n<p>" << sug.candidates_evaluated << " candidate evaluations";

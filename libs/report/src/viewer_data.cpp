@@ -187,8 +187,12 @@ ViewerFiles write_viewer(const ReportInputs& in, const std::string& report_folde
     c["source"] = s.source;
     c["region"] = s.region;
     c["look_at"] = vec3(s.look_at);
-    c["energy"] = {{"total", s.energy.total}, {"occlusion", s.energy.occlusion}, {"focus", s.energy.focus},
-                   {"parallax", s.energy.parallax}, {"incidence", s.energy.incidence}};
+    c["energy"] = s.energy.whole_mesh
+                      ? json{{"total", s.energy.total}, {"refinement", s.energy.refinement},
+                             {"exploration", s.energy.exploration}}
+                      : json{{"total", s.energy.total}, {"occlusion", s.energy.occlusion},
+                             {"focus", s.energy.focus}, {"parallax", s.energy.parallax},
+                             {"incidence", s.energy.incidence}};
     c["seen_faces"] = s.seen_faces;
     suggestions.push_back(c);
   }

@@ -422,9 +422,7 @@ void FilterMeshNbvPlugin::suggestNextView(MeshDocument& document, const RichPara
     raster->shot = meshlab::shot_from_camera(s.camera);
     const Vec3 c = s.camera.center();
     std::ostringstream line;
-    line << s.label << ": energy " << format(s.energy.total) << " (occlusion "
-         << format(s.energy.occlusion) << ", focus " << format(s.energy.focus) << ", parallax "
-         << format(s.energy.parallax) << ", incidence " << format(s.energy.incidence)
+    line << s.label << ": energy " << format(s.energy.total) << " (" << energy_terms_text(s.energy)
          << "), centre (" << format(c.x()) << ", " << format(c.y()) << ", " << format(c.z())
          << "), sees " << s.seen_faces.size() << "/" << r.regions[std::size_t(s.region)].faces.size()
          << " worst faces of region " << s.region << " [" << s.source << "]";

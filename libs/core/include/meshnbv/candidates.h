@@ -3,6 +3,8 @@
 // refinement (the paper's future work).
 #pragma once
 
+#include <functional>
+
 #include <cstdint>
 #include <vector>
 
@@ -97,5 +99,11 @@ PinholeCamera refine_candidate(const PinholeCamera& start, const Vec3& up,
                                const EnergyEvaluator& energy, const SafetyChecker& safety,
                                const RefineOptions& options = {},
                                std::size_t* evaluations = nullptr);
+// The same for any energy to maximise; the initial simplex's position step
+// is relative to the distance from the start to `target`.
+PinholeCamera refine_candidate(const PinholeCamera& start, const Vec3& up,
+                               const std::function<double(const PinholeCamera&)>& energy,
+                               const Vec3& target, const SafetyChecker& safety,
+                               const RefineOptions& options = {}, std::size_t* evaluations = nullptr);
 
 }  // namespace meshnbv

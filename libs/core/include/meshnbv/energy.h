@@ -9,6 +9,7 @@
 #include <array>
 #include <atomic>
 #include <cstddef>
+#include <string>
 #include <vector>
 
 #include "meshnbv/camera.h"
@@ -67,10 +68,18 @@ double incidence_term(double angle_radians, const EnergyOptions& options);
 double parallax_term(const Vec3& candidate_centre, const Vec3& existing_centre, const Vec3& vertex,
                      const EnergyOptions& options);
 
-// Weighted contributions summed over the region's vertices; total = their sum.
+// Weighted contributions summed over the region's vertices; total = their
+// sum. The whole-mesh energy (gain.h) fills refinement and exploration
+// instead, and total = their sum; each energy leaves the other's terms 0.
 struct EnergyTerms {
-  double occlusion = 0, focus = 0, parallax = 0, incidence = 0, total = 0;
+  double occlusion = 0, focus = 0, parallax = 0, incidence = 0;
+  double refinement = 0, exploration = 0;
+  double total = 0;
+  bool whole_mesh = false;  // filled by the whole-mesh energy
 };
+// "occlusion 1.2, focus -0.3, parallax 5.1, incidence 0.2" (paper) or
+// "refinement 0.012, exploration 0.004" (whole mesh), for one-line reports.
+std::string energy_terms_text(const EnergyTerms& terms);
 
 class EnergyEvaluator {
  public:

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "meshnbv/candidates.h"
+#include "meshnbv/gain.h"
 #include "meshnbv/progress.h"
 #include "meshnbv/scene.h"
 
@@ -20,7 +21,11 @@ struct SuggestOptions {
   int worst_k = 10;          // faces in the worst set
   int top = 3;               // suggestions to return (greedy batch)
   CandidateMode mode = CandidateMode::Sampled;
+  // paper: the SPEC's energy over the worst region (`energy`); reconstructability:
+  // the whole-mesh gain (`gain`, gain.h).
+  EnergyKind energy_kind = EnergyKind::Paper;
   EnergyOptions energy;
+  GainOptions gain;
   SamplingOptions sampling;
   double safety_distance = 0.05;  // share of the bounding-box diagonal
   int refine_best = 8;            // refined mode: sampled candidates refined per pick
@@ -39,6 +44,8 @@ struct Suggestion {
   Vec3 look_at = Vec3::Zero();
   EnergyTerms energy;
   std::vector<int> seen_faces;  // worst faces of its region that it sees
+  // reconstructability: the faces it improves most, best first (at most 100).
+  std::vector<int> improved_faces;
 };
 
 struct RankedCandidate {

@@ -1,0 +1,127 @@
+// The whole-mesh energy (issue #16, beyond the paper; docs/nbv.md): a
+// candidate pose is worth the improvement it is expected to bring to the
+// reconstructability of the whole mesh, weighted by what the quality index
+// says of each face. For a surface point with the views V that see it, the
+// reconstructability is the heuristic of Smith, Moehrle, Goesele and
+// Heidrich 2018 ("Aerial path planning for urban scene reconstruction";
+// ../shared/notes/anchors.md), reimplemented from its description:
+//   h(V) = sum over pairs {a, b} of V of g(alpha_ab) min(cos theta_a, cos theta_b) min(s_a, s_b)
+//   g(alpha) = (1 - sigmoid(alpha; pi/4, 8)) sigmoid(alpha; pi/16, 32)
+// with alpha the angle between the pair's rays at the point, theta a ray's
+// incidence angle and s = 1 - d / d_max its distance scale; a view counts
+// where the point projects into its image, unoccluded, facing it under less
+// than `max_incidence` degrees, nearer than d_max. A point's first view is
+// credited half of an ideal pair, g_max cos theta s / 2 (the best such over
+// V), so that a view of a point nobody sees yet is worth something; the
+// second view then brings the pair itself. Views are added one at a time,
+// and a new view's increment (its pairs and credit) is multiplied by
+// sigmoid(alpha_min; pi/16, 32), alpha_min its smallest angle to a view
+// already there: the heuristic's sum over pairs would count a repeat of
+// an existing view as a new one (a twin of a view would gain almost what
+// the view did), while such a ray triangulates nothing new.
+//
+// A face's utility is -(max(T - h, 0))^2 (the target T = gain_target:
+// diminishing returns, nothing more once reached), its weight the quality
+// index's rank among the observed faces, in (0, 1] (the worst face 1), or
+// exploration_weight for a face that is unobserved (PRI undefined) or on
+// the mesh's boundary (a hole's border, where the surface goes on
+// unreconstructed). A candidate's energy is the weighted utility it adds,
+//   E(P) = sum_f area_f w_f [(T - h_f)_+^2 - (T - h_f - dh_f(P))_+^2] / (T^2 A)
+// with A the mesh's area: the share of the weighted deficit it removes, in
+// [0, 1]. Faces are scored in compact clusters (same place, same facing:
+// runs of a Morton curve split by the dominant axis of the normal), each at
+// the centroid of its face nearest the cluster's centroid, with the
+// cluster's area-weighted mean normal.
+#pragma once
+
+#include <atomic>
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "meshnbv/camera.h"
+#include "meshnbv/energy.h"
+#include "meshnbv/mesh.h"
+#include "meshnbv/raycaster.h"
+
+namespace meshnbv {
+
+// paper: the SPEC's energy over the worst region (energy.h);
+// reconstructability: the whole-mesh gain of this header.
+enum class EnergyKind { Paper, Reconstructability };
+EnergyKind parse_energy_kind(const std::string& name);  // paper | reconstructability
+std::string energy_kind_name(EnergyKind kind);
+
+struct GainOptions {
+  double target = 3.0;             // T, the reconstructability a face needs
+  double exploration_weight = 1.0; // weight of unobserved and boundary faces
+  int clusters = 2048;             // clusters scored per candidate; 0 = one per face
+  double max_incidence = 85.0;     // degrees; a view at more than this does not count (Smith)
+  VisibilityOptions visibility;    // the occlusion test's (suggest: the energy's)
+};
+
+// g(alpha) above, for alpha in radians.
+double pair_angle_score(double alpha);
+
+class GainEvaluator {
+ public:
+  // `pri` per face (NaN = unobserved); `existing` the views already taken.
+  // Throws Error when pri does not match the mesh.
+  GainEvaluator(const TriangleMesh& mesh, const RayCaster& caster, const std::vector<float>& pri,
+                const std::vector<PinholeCamera>& existing, const GainOptions& options);
+
+  // refinement: the gain on observed faces; exploration: on unobserved and
+  // boundary ones; total: their sum. The paper's four terms stay 0.
+  EnergyTerms evaluate(const PinholeCamera& candidate) const;
+  // The clusters the candidate improves, with their weighted gains (summing
+  // to evaluate().total), largest first.
+  std::vector<std::pair<int, double>> cluster_gains(const PinholeCamera& candidate) const;
+  // The faces of the clusters the candidate improves most, in that order,
+  // at most `max_faces` (whole clusters, the last one cut).
+  std::vector<int> improved_faces(const PinholeCamera& candidate, std::size_t max_faces) const;
+  // The candidate becomes an existing view: later evaluations see it
+  // (batches with diminishing returns).
+  void add_view(const PinholeCamera& camera);
+
+  // Per face: the weighted deficit w_f (max(T - h, 0) / T)^2 of its
+  // cluster, what sampled candidates aim at.
+  std::vector<float> face_deficits() const;
+  // Per face: the reconstructability h of its cluster, and the weight w_f.
+  std::vector<float> face_reconstructability() const;
+  const std::vector<float>& face_weights() const { return weight_; }
+
+  std::size_t num_clusters() const { return clusters_.size(); }
+  const std::vector<int>& cluster_faces(std::size_t c) const { return clusters_[c].faces; }
+  double max_distance() const { return d_max_; }
+  std::size_t evaluations() const { return evaluations_.load(std::memory_order_relaxed); }
+
+ private:
+  struct Ray {
+    Vec3 direction;  // unit, from the point to the camera
+    double cos_theta, scale;
+  };
+  struct Cluster {
+    std::vector<int> faces;
+    Vec3 point, normal;
+    double weight_refine = 0, weight_explore = 0;  // sum of area w / A
+    std::vector<Ray> rays;                         // the views that see it
+    double h = 0;                                  // pairs + first-view credit
+    double best_single = 0;                        // max cos theta s over rays
+  };
+  // The ray from c.point to a camera at `centre` when the view counts
+  // (projection, facing, incidence, distance, occlusion); false otherwise.
+  bool view_ray(const Cluster& c, const PinholeCamera& camera, bool check_occlusion, Ray* ray) const;
+  double delta(const Cluster& c, const Ray& r) const;
+  double weighted_gain(const Cluster& c, double dh) const;
+
+  const TriangleMesh& mesh_;
+  const RayCaster& caster_;
+  GainOptions options_;
+  double cos_max_incidence_ = 0, d_max_ = 0, absolute_eps_ = 0;
+  std::vector<float> weight_;
+  std::vector<Cluster> clusters_;
+  std::vector<int> cluster_of_face_;
+  mutable std::atomic<std::size_t> evaluations_{0};
+};
+
+}  // namespace meshnbv

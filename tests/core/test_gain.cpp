@@ -1,0 +1,317 @@
+// The whole-mesh energy (gain.h): its formula checked against values
+// written out here, one edge case per test, and the planner's batches.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+#include "meshnbv/error.h"
+#include "meshnbv/gain.h"
+#include "meshnbv/planner.h"
+#include "meshnbv/raycaster.h"
+
+using namespace meshnbv;
+
+namespace gain_test {
+
+constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
+
+// The square [-1, 1]^2 at z = 0, normal +z, as n x n cells of two triangles.
+TriangleMesh square(int n) {
+  TriangleMesh m;
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i) m.vertices.push_back(Vec3(-1 + 2.0 * i / n, -1 + 2.0 * j / n, 0));
+  auto at = [n](int i, int j) { return j * (n + 1) + i; };
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      m.faces.push_back({at(i, j), at(i + 1, j), at(i + 1, j + 1)});
+      m.faces.push_back({at(i, j), at(i + 1, j + 1), at(i, j + 1)});
+    }
+  return m;
+}
+
+// The closed cube [-1, 1]^3, outward normals.
+TriangleMesh cube() {
+  TriangleMesh m;
+  for (int k = 0; k < 8; ++k) m.vertices.push_back(Vec3(k & 1 ? 1 : -1, k & 2 ? 1 : -1, k & 4 ? 1 : -1));
+  const int quads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+  for (const auto& q : quads) {
+    m.faces.push_back({q[0], q[1], q[2]});
+    m.faces.push_back({q[0], q[2], q[3]});
+  }
+  return m;
+}
+
+PinholeCamera looking(const Vec3& eye, const Vec3& target) {
+  const Vec3 up = std::abs((target - eye).normalized().z()) > 0.9 ? Vec3(0, 1, 0) : Vec3(0, 0, 1);
+  return PinholeCamera::look_at(eye, target, up, 500, 500, 319.5, 239.5, 640, 480);
+}
+
+double sigmoid(double x, double x0, double k) { return 1 / (1 + std::exp(-k * (x - x0))); }
+
+// g's maximum over angles, by a fine scan.
+double g_max() {
+  double best = 0;
+  for (int i = 0; i <= 200000; ++i) best = std::max(best, pair_angle_score(M_PI * i / 200000));
+  return best;
+}
+
+double angle(const Vec3& a, const Vec3& b) { return std::acos(std::clamp(a.normalized().dot(b.normalized()), -1.0, 1.0)); }
+
+}  // namespace gain_test
+
+TEST(Gain, PairScoreIsSmithsProductOfSigmoids) {
+  for (double deg : {0.0, 5.0, 11.25, 20.0, 45.0, 90.0, 180.0}) {
+    const double a = deg * M_PI / 180;
+    const double match = 1 - 1 / (1 + std::exp(-8 * (a - M_PI / 4)));
+    const double tri = 1 / (1 + std::exp(-32 * (a - M_PI / 16)));
+    EXPECT_NEAR(pair_angle_score(a), match * tri, 1e-15) << deg;
+  }
+  // Small baselines and wide ones both score low; the peak lies between.
+  EXPECT_LT(pair_angle_score(0.0), 0.01);
+  EXPECT_LT(pair_angle_score(M_PI / 2), 0.01);
+  EXPECT_GT(pair_angle_score(20 * M_PI / 180), 0.9);
+}
+
+TEST(Gain, NamesReadBack) {
+  EXPECT_EQ(parse_energy_kind("paper"), EnergyKind::Paper);
+  EXPECT_EQ(energy_kind_name(parse_energy_kind("reconstructability")), "reconstructability");
+  EXPECT_THROW(parse_energy_kind("whole"), Error);
+}
+
+// Two faces of a square, one existing view above it, a candidate at an
+// angle: every face's reconstructability, gain and the energy from the
+// formula of gain.h, written out here.
+TEST(Gain, EnergyMatchesTheFormulaOnAPlane) {
+  const TriangleMesh mesh = gain_test::square(1);
+  const RayCaster caster(mesh);
+  const PinholeCamera a = gain_test::looking(Vec3(0.1, 0.2, 4), Vec3(0, 0, 0));
+  const PinholeCamera b = gain_test::looking(Vec3(1.5, 0.3, 3.5), Vec3(0, 0, 0));
+  GainOptions o;
+  o.clusters = 0;  // every face on its own
+  o.target = 3;
+  const GainEvaluator gain(mesh, caster, {gain_test::kNaN, gain_test::kNaN}, {a}, o);
+  ASSERT_EQ(gain.num_clusters(), 2u);
+  // d_max: twice the farthest existing view of a face.
+  double far = 0;
+  for (std::size_t f = 0; f < 2; ++f) far = std::max(far, (a.center() - mesh.face_centroid(f)).norm());
+  EXPECT_NEAR(gain.max_distance(), 2 * far, 1e-12);
+  const double dmax = 2 * far, gm = gain_test::g_max();
+  double expected = 0;
+  for (std::size_t f = 0; f < 2; ++f) {
+    const Vec3 p = mesh.face_centroid(f);
+    const double ca = (a.center() - p).normalized().z(), cb = (b.center() - p).normalized().z();
+    const double sa = 1 - (a.center() - p).norm() / dmax, sb = 1 - (b.center() - p).norm() / dmax;
+    const double h = 0.5 * gm * ca * sa;  // one view: the first-view credit
+    const double alpha = gain_test::angle(a.center() - p, b.center() - p);
+    const double match = 1 - gain_test::sigmoid(alpha, M_PI / 4, 8), tri = gain_test::sigmoid(alpha, M_PI / 16, 32);
+    // The increment, times the novelty of b's ray against a's (the only one).
+    const double dh = tri * (match * tri * std::min(ca, cb) * std::min(sa, sb) + 0.5 * gm * std::max(0.0, cb * sb - ca * sa));
+    const double before = std::max(3 - h, 0.0), after = std::max(3 - h - dh, 0.0);
+    // Both faces are on the boundary: exploration weight 1, half the area each.
+    expected += 0.5 * (before * before - after * after) / 9;
+    EXPECT_NEAR(gain.face_reconstructability()[f], h, 1e-6) << f;
+  }
+  const EnergyTerms t = gain.evaluate(b);
+  EXPECT_TRUE(t.whole_mesh);
+  EXPECT_NEAR(t.total, expected, 1e-4 * expected);
+  EXPECT_NEAR(t.exploration, t.total, 1e-15);
+  EXPECT_EQ(t.refinement, 0.0);
+  EXPECT_EQ(t.occlusion + t.focus + t.parallax + t.incidence, 0.0);
+  // The per-cluster gains add up to the energy.
+  double sum = 0;
+  for (const auto& [c, g] : gain.cluster_gains(b)) sum += g;
+  EXPECT_NEAR(sum, t.total, 1e-12);
+}
+
+TEST(Gain, ObservedFacesWeighTheirPriRank) {
+  const TriangleMesh mesh = gain_test::cube();  // closed: no boundary face
+  const RayCaster caster(mesh);
+  std::vector<float> pri(12);
+  for (int f = 0; f < 12; ++f) pri[std::size_t(f)] = float(f % 6);  // pairs of ties
+  pri[11] = gain_test::kNaN;
+  GainOptions o;
+  o.clusters = 0;
+  o.exploration_weight = 2.5;
+  const GainEvaluator gain(mesh, caster, pri, {gain_test::looking(Vec3(0, -6, 0.5), Vec3(0, 0, 0))}, o);
+  // 11 observed faces; value v (0..5) is held by faces v and v + 6 (5 only by face 5).
+  for (int f = 0; f < 11; ++f) {
+    const int v = f % 6;
+    const double rank = v < 5 ? 2 * v + 1.5 : 11;  // mean of the ranks 2v+1, 2v+2; the single 5 is the 11th
+    EXPECT_NEAR(gain.face_weights()[std::size_t(f)], rank / 11, 1e-6) << f;
+  }
+  EXPECT_FLOAT_EQ(gain.face_weights()[11], 2.5f);
+}
+
+TEST(Gain, BoundaryFacesExplore) {
+  const TriangleMesh mesh = gain_test::square(4);
+  const RayCaster caster(mesh);
+  const std::vector<float> pri(mesh.num_faces(), 0.5f);
+  GainOptions o;
+  o.clusters = 0;
+  o.exploration_weight = 3;
+  const GainEvaluator gain(mesh, caster, pri, {gain_test::looking(Vec3(0, 0, 4), Vec3(0, 0, 0))}, o);
+  // A boundary face has an edge on the square's border (both ends on one side).
+  auto on_side = [&](int a, int b) {
+    const Vec3 &p = mesh.vertices[std::size_t(a)], &q = mesh.vertices[std::size_t(b)];
+    for (int k = 0; k < 2; ++k)
+      for (double s : {-1.0, 1.0})
+        if (p[k] == s && q[k] == s) return true;
+    return false;
+  };
+  int expected = 0;
+  for (std::size_t f = 0; f < mesh.num_faces(); ++f) {
+    const Face& t = mesh.faces[f];
+    const bool boundary = on_side(t[0], t[1]) || on_side(t[1], t[2]) || on_side(t[2], t[0]);
+    expected += boundary;
+    // One value for all 32 observed faces: they share the mean rank 16.5 of 32.
+    EXPECT_FLOAT_EQ(gain.face_weights()[f], boundary ? 3.0f : 16.5f / 32) << f;
+  }
+  EXPECT_GT(expected, 0);
+  EXPECT_LT(expected, int(mesh.num_faces()));
+}
+
+TEST(Gain, NothingBeyondTheTarget) {
+  const TriangleMesh mesh = gain_test::square(2);
+  const RayCaster caster(mesh);
+  const std::vector<float> pri(mesh.num_faces(), gain_test::kNaN);
+  GainOptions o;
+  o.clusters = 0;
+  o.target = 0.05;  // one good pair reaches it
+  const std::vector<PinholeCamera> existing = {gain_test::looking(Vec3(0, 0, 4), Vec3(0, 0, 0)),
+                                               gain_test::looking(Vec3(1.4, 0, 3.8), Vec3(0, 0, 0))};
+  const GainEvaluator gain(mesh, caster, pri, existing, o);
+  for (float h : gain.face_reconstructability()) EXPECT_GE(h, 0.05f);
+  EXPECT_EQ(gain.evaluate(gain_test::looking(Vec3(-1.4, 0.2, 3.8), Vec3(0, 0, 0))).total, 0.0);
+  for (float d : gain.face_deficits()) EXPECT_EQ(d, 0.0f);
+}
+
+TEST(Gain, OccludedGrazingAndFarViewsGainNothing) {
+  TriangleMesh mesh = gain_test::square(2);
+  const std::size_t plane_faces = mesh.num_faces();
+  const std::vector<PinholeCamera> existing = {gain_test::looking(Vec3(0, 0, 4), Vec3(0, 0, 0))};
+  const PinholeCamera candidate = gain_test::looking(Vec3(1.5, 0, 3.5), Vec3(0, 0, 0));
+  // A roof over the whole square, between it and the candidate (not the existing view: it is below).
+  TriangleMesh roofed = mesh;
+  const int v = int(roofed.vertices.size());
+  // At z = 2.5 the candidate's rays to the square pass x in [0.79, 1.36],
+  // the existing view's x in [-0.38, 0.38].
+  for (const Vec3& p : {Vec3(0.6, -3, 2.5), Vec3(2, -3, 2.5), Vec3(2, 3, 2.5), Vec3(0.6, 3, 2.5)})
+    roofed.vertices.push_back(p);
+  roofed.faces.push_back({v, v + 2, v + 1});
+  roofed.faces.push_back({v, v + 3, v + 2});
+  GainOptions o;
+  o.clusters = 0;
+  {
+    const RayCaster caster(mesh);
+    const GainEvaluator open(mesh, caster, std::vector<float>(plane_faces, gain_test::kNaN), existing, o);
+    EXPECT_GT(open.evaluate(candidate).total, 0.0);
+    // At 87 degrees of incidence (beyond 85) and farther than d_max.
+    // 86-88 degrees from the normal over the whole square.
+    EXPECT_EQ(open.evaluate(gain_test::looking(Vec3(5, 0, 5 * std::tan(3 * M_PI / 180)), Vec3(0, 0, 0))).total, 0.0);
+    EXPECT_EQ(open.evaluate(gain_test::looking(Vec3(0, 0, 2.05 * open.max_distance()), Vec3(0, 0, 0))).total, 0.0);
+  }
+  const RayCaster caster(roofed);
+  std::vector<float> pri(roofed.num_faces(), gain_test::kNaN);
+  const GainEvaluator covered(roofed, caster, pri, existing, o);
+  const EnergyTerms t = covered.evaluate(candidate);
+  for (const auto& [c, g] : covered.cluster_gains(candidate))
+    EXPECT_GE(covered.cluster_faces(std::size_t(c))[0], int(plane_faces)) << "a plane face seen through the roof";
+  EXPECT_GE(t.total, 0.0);
+  // Every face of the plane still counts the existing view (not occluded).
+  for (std::size_t f = 0; f < plane_faces; ++f) EXPECT_GT(covered.face_reconstructability()[f], 0.0f) << f;
+}
+
+TEST(Gain, AddedViewsGiveDiminishingReturns) {
+  const TriangleMesh mesh = gain_test::square(8);
+  const RayCaster caster(mesh);
+  const std::vector<float> pri(mesh.num_faces(), gain_test::kNaN);
+  GainOptions o;
+  o.clusters = 0;
+  GainEvaluator gain(mesh, caster, pri, {gain_test::looking(Vec3(0, 0, 4), Vec3(0, 0, 0))}, o);
+  const PinholeCamera b = gain_test::looking(Vec3(1.4, 0, 3.8), Vec3(0, 0, 0));
+  const PinholeCamera c = gain_test::looking(Vec3(1.3, 0.4, 3.8), Vec3(0, 0, 0));
+  const double before = gain.evaluate(c).total;
+  const double b_alone = gain.evaluate(b).total;
+  gain.add_view(b);
+  const double after = gain.evaluate(c).total;
+  EXPECT_GT(before, 0.0);
+  EXPECT_LT(after, before);
+  EXPECT_GT(after, 0.0);  // c still adds pairs with both views
+  EXPECT_LT(gain.evaluate(b).total, 0.1 * b_alone);  // the same pose again: a pair of almost zero angle
+}
+
+TEST(Gain, ClustersApproximateTheFaces) {
+  const TriangleMesh mesh = gain_test::square(32);  // 2048 faces
+  const RayCaster caster(mesh);
+  const std::vector<float> pri(mesh.num_faces(), gain_test::kNaN);
+  const std::vector<PinholeCamera> existing = {gain_test::looking(Vec3(0, 0, 4), Vec3(0, 0, 0))};
+  GainOptions exact;
+  exact.clusters = 0;
+  GainOptions coarse;
+  coarse.clusters = 96;
+  const GainEvaluator e(mesh, caster, pri, existing, exact), c(mesh, caster, pri, existing, coarse);
+  EXPECT_EQ(e.num_clusters(), mesh.num_faces());
+  EXPECT_LE(c.num_clusters(), 96u);
+  EXPECT_GE(c.num_clusters(), 16u);
+  std::size_t faces = 0;
+  for (std::size_t k = 0; k < c.num_clusters(); ++k) faces += c.cluster_faces(k).size();
+  EXPECT_EQ(faces, mesh.num_faces());
+  for (const Vec3& eye : {Vec3(1.5, 0, 3.5), Vec3(-2, 1, 3), Vec3(0.3, -1.8, 2.5)}) {
+    const double x = e.evaluate(gain_test::looking(eye, Vec3(0, 0, 0))).total, y = c.evaluate(gain_test::looking(eye, Vec3(0, 0, 0))).total;
+    EXPECT_NEAR(y, x, 0.05 * x) << eye.transpose();
+  }
+}
+
+TEST(Gain, MismatchedPriIsAnError) {
+  const TriangleMesh mesh = gain_test::square(1);
+  const RayCaster caster(mesh);
+  EXPECT_THROW(GainEvaluator(mesh, caster, {1.0f}, {}, GainOptions{}), Error);
+}
+
+// The planner with the whole-mesh energy, given candidates around a cube
+// seen from one side: the first pick looks at the unseen sides, and the
+// second, in the same batch, is not the first's twin.
+TEST(Gain, PlannerBatchesCoverTheMesh) {
+  Scene scene;
+  scene.mesh = gain_test::cube();
+  std::vector<float> pri(12, gain_test::kNaN);
+  for (const Vec3& eye : {Vec3(0.3, -6, 0.5), Vec3(-0.8, -6, 0.7)}) {
+    View v;
+    v.label = "existing";
+    v.camera = gain_test::looking(eye, Vec3(0, 0, 0));
+    v.pixels = std::make_shared<const Image>(640, 480, 1);
+    scene.views.push_back(v);
+  }
+  // The -y face is seen by both views: PRI defined there.
+  for (int f : {4, 5}) pri[std::size_t(f)] = 0.1f;
+  std::vector<View> given;
+  auto add = [&](const std::string& label, const Vec3& eye) {
+    View v;
+    v.label = label;
+    v.camera = gain_test::looking(eye, Vec3(0, 0, 0));
+    given.push_back(v);
+  };
+  add("same_side", Vec3(0.5, -6, 1.0));
+  add("east", Vec3(6, -0.3, 0.4));
+  add("east_twin", Vec3(6, -0.2, 0.4));
+  add("north", Vec3(-0.4, 6, 0.6));
+  SuggestOptions o;
+  o.mode = CandidateMode::Given;
+  o.energy_kind = EnergyKind::Reconstructability;
+  o.gain.clusters = 0;
+  o.top = 2;
+  const SuggestResult r = suggest_views(scene, pri, o, given);
+  ASSERT_EQ(r.suggestions.size(), 2u);
+  EXPECT_NE(r.suggestions[0].source, "same_side");
+  EXPECT_NE(r.suggestions[1].source, "same_side");
+  const bool twins = (r.suggestions[0].source == "east") + (r.suggestions[0].source == "east_twin") +
+                         (r.suggestions[1].source == "east") + (r.suggestions[1].source == "east_twin") ==
+                     2;
+  EXPECT_FALSE(twins) << r.suggestions[0].source << " then " << r.suggestions[1].source;
+  EXPECT_TRUE(r.suggestions[0].energy.whole_mesh);
+  EXPECT_FALSE(r.suggestions[0].improved_faces.empty());
+  // Every given candidate is ranked, with its terms.
+  ASSERT_EQ(r.ranking.size(), 4u);
+  for (const auto& c : r.ranking) EXPECT_NEAR(c.energy.total, c.energy.refinement + c.energy.exploration, 1e-12);
+}
