@@ -37,10 +37,12 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 BASELINES = ["uniform", "random", "coverage"]
-ORDER = BASELINES + ["nbv"]
+ORDER = BASELINES + ["nbv", "nbv_recon", "nbv_recon_sampled"]
 LABELS = {"uniform": "Uniform", "random": "Random (mean of seeds)", "coverage": "Coverage",
-          "nbv": "NBV (paper's energy)"}
-COLOURS = {"uniform": "tab:blue", "random": "tab:orange", "coverage": "tab:green", "nbv": "tab:red"}
+          "nbv": "NBV (paper's energy)", "nbv_recon": "NBV (whole-mesh energy)",
+          "nbv_recon_sampled": "NBV (whole-mesh energy, new poses)"}
+COLOURS = {"uniform": "tab:blue", "random": "tab:orange", "coverage": "tab:green", "nbv": "tab:red",
+           "nbv_recon": "tab:purple", "nbv_recon_sampled": "tab:brown"}
 
 
 def load_runs(dataset_dir):
@@ -158,6 +160,22 @@ def analyse(dataset, ddir, runs):
             "accuracy_curve": {v: log_interval([a[v] if a and v in a else None for a in acc[s]], t_table)
                                for v in views},
         }
+    # Views a strategy needs to reach uniform's final completeness from the
+    # same starting set, as a share of uniform's views (issue #16's new-pose
+    # criterion); None where it never does within the budget.
+    if "uniform" in strategies:
+        for s in strategies:
+            shares = []
+            for c, u in zip(comp[s], comp["uniform"]):
+                if not c or not u:
+                    shares.append(None)
+                    continue
+                goal = u[last]
+                reach = [v for v in sorted(c) if c[v] >= goal]
+                shares.append(100.0 * reach[0] / last if reach else None)
+            result["strategies"][s]["views_to_uniform_final"] = {
+                "share_per_set": shares, "reached": sum(x is not None for x in shares),
+                "interval": interval(shares, t_table)}
     baselines = [s for s in BASELINES if s in strategies]
     best = max(baselines, key=lambda s: result["strategies"][s]["area"][1]) if baselines else None
     result["best_baseline"] = best
@@ -261,6 +279,11 @@ def analyse(dataset, ddir, runs):
                                 for s in strategies) + " |")
         lines.append("| | final 90% accuracy ratio | " +
                      " | ".join("—" if s == best else cell(paired[s]["final_accuracy_ratio"], 1.0, 2)
+                                for s in strategies) + " |")
+    if "uniform" in strategies:
+        lines.append("| Views to reach Uniform's final | %% of Uniform's %d (sets reaching it) | " % last +
+                     " | ".join("%s (%d/%d)" % (cell(result["strategies"][s]["views_to_uniform_final"]["interval"], 1.0, 0),
+                                                result["strategies"][s]["views_to_uniform_final"]["reached"], n_sets)
                                 for s in strategies) + " |")
     table = "\n".join(lines) + "\n"
     with open(os.path.join(ddir, "table.md"), "w") as f:

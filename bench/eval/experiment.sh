@@ -59,6 +59,7 @@ strategies() {
   for s in $SEEDS; do run "$dataset" "random_seed$s" "$@" --strategy random --seed "$s"; done
   run "$dataset" coverage "$@" --strategy coverage
   run "$dataset" nbv "$@" --strategy nbv
+  run "$dataset" nbv_recon "$@" --strategy nbv --energy reconstructability
 }
 
 for dataset in $ONLY; do
@@ -79,6 +80,9 @@ for dataset in $ONLY; do
         "$MESHNBV" synth "$dataset" --out "$DATA" --views 24 --size 1024x768 --layout ring --quiet --overwrite
       fi
       strategies "$dataset" "$DATA" --view-budget 12 --cache "$WORK/cache/$dataset" --facet-support edges
+      # New poses anywhere (rendered): the whole-mesh energy's sampled candidates.
+      run "$dataset" nbv_recon_sampled "$DATA" --view-budget 12 --cache "$WORK/cache/$dataset" \
+        --facet-support edges --strategy nbv --energy reconstructability --nbv-candidates sampled
       ;;
     *) echo "unknown dataset '$dataset' (temple, building, fortress)" >&2; exit 2 ;;
   esac

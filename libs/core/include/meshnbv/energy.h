@@ -73,8 +73,8 @@ double parallax_term(const Vec3& candidate_centre, const Vec3& existing_centre, 
 // instead, and total = their sum; each energy leaves the other's terms 0.
 struct EnergyTerms {
   double occlusion = 0, focus = 0, parallax = 0, incidence = 0;
-  double refinement = 0, exploration = 0;
   double total = 0;
+  double refinement = 0, exploration = 0;  // filled by the whole-mesh energy
   bool whole_mesh = false;  // filled by the whole-mesh energy
 };
 // "occlusion 1.2, focus -0.3, parallax 5.1, incidence 0.2" (paper) or
