@@ -60,7 +60,6 @@ strategies() {
   run "$dataset" coverage "$@" --strategy coverage
   run "$dataset" nbv "$@" --strategy nbv
   run "$dataset" nbv_recon "$@" --strategy nbv --energy reconstructability
-  run "$dataset" nbv_recon_nohull "$@" --strategy nbv --energy reconstructability --no-explore-hull
 }
 
 for dataset in $ONLY; do

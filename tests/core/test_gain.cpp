@@ -7,7 +7,6 @@
 
 #include "meshnbv/error.h"
 #include "meshnbv/gain.h"
-#include "meshnbv/hull.h"
 #include "meshnbv/planner.h"
 #include "meshnbv/raycaster.h"
 
@@ -315,57 +314,4 @@ TEST(Gain, PlannerBatchesCoverTheMesh) {
   // Every given candidate is ranked, with its terms.
   ASSERT_EQ(r.ranking.size(), 4u);
   for (const auto& c : r.ranking) EXPECT_NEAR(c.energy.total, c.energy.refinement + c.energy.exploration, 1e-12);
-}
-
-TEST(Hull, CubeHullIsOutwardWithItsArea) {
-  std::vector<Vec3> points;
-  for (int k = 0; k < 8; ++k) points.push_back(Vec3(k & 1 ? 1 : -1, k & 2 ? 1 : -1, k & 4 ? 1 : -1));
-  points.push_back(Vec3(0.2, -0.1, 0.3));  // inside
-  const std::vector<HullTriangle> hull = convex_hull_triangles(points);
-  ASSERT_EQ(hull.size(), 12u);
-  double area = 0;
-  for (const HullTriangle& t : hull) {
-    const Vec3 n = (t[1] - t[0]).cross(t[2] - t[0]);
-    area += 0.5 * n.norm();
-    EXPECT_GT(n.dot((t[0] + t[1] + t[2]) / 3), 0.0) << "an inward triangle";
-  }
-  EXPECT_NEAR(area, 24.0, 1e-12);
-  // Coplanar or too few points span no solid.
-  EXPECT_TRUE(convex_hull_triangles({Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0)}).empty());
-  EXPECT_TRUE(convex_hull_triangles(gain_test::square(4).vertices).empty());
-}
-
-// A ground square and a wall along its -y edge, seen from -y: the hull's
-// slanted face behind the wall and its sides are surface nobody has seen.
-TEST(Gain, UnseenHullStandsForMissingSurface) {
-  TriangleMesh mesh = gain_test::square(8);
-  const int base = int(mesh.vertices.size());
-  for (int j = 0; j <= 8; ++j)
-    for (int i = 0; i <= 8; ++i) mesh.vertices.push_back(Vec3(-1 + 2.0 * i / 8, -1, 2.0 * j / 8));
-  for (int j = 0; j < 8; ++j)
-    for (int i = 0; i < 8; ++i) {
-      const int a = base + j * 9 + i;  // normal -y
-      mesh.faces.push_back({a, a + 1, a + 9 + 1});
-      mesh.faces.push_back({a, a + 9 + 1, a + 9});
-    }
-  const RayCaster caster(mesh);
-  const std::vector<float> pri(mesh.num_faces(), gain_test::kNaN);
-  const std::vector<PinholeCamera> existing = {gain_test::looking(Vec3(0, -6, 1), Vec3(0, 0, 0.5))};
-  GainOptions o;
-  o.clusters = 0;
-  const GainEvaluator with(mesh, caster, pri, existing, o);
-  o.explore_hull = false;
-  const GainEvaluator without(mesh, caster, pri, existing, o);
-  EXPECT_EQ(without.num_hull_points(), 0u);
-  ASSERT_GT(with.num_hull_points(), 0u);
-  EXPECT_EQ(with.num_clusters(), mesh.num_faces() + with.num_hull_points());
-  auto hull_gain = [&](const PinholeCamera& c) {
-    double sum = 0;
-    for (const auto& [k, g] : with.cluster_gains(c))
-      if (with.cluster_faces(std::size_t(k)).empty()) sum += g;
-    return sum;
-  };
-  EXPECT_GT(hull_gain(gain_test::looking(Vec3(0, 6, 4), Vec3(0, 0, 0.5))), 0.0);
-  // From the side already seen, the hull is the wall itself or faces away.
-  EXPECT_EQ(hull_gain(gain_test::looking(Vec3(0.5, -6, 2.5), Vec3(0, 0, 0.5))), 0.0);
 }
