@@ -40,56 +40,54 @@ Fixture& fixture() {
 }
 }  // namespace
 
-// The energy of many candidate poses (the sampled set, 1536 poses).
-static void BM_CandidateEvaluations(benchmark::State& state) {
-  Fixture& f = fixture();
-  tbb::global_control threads(tbb::global_control::max_allowed_parallelism, std::size_t(state.range(0)));
-  const TriangleMesh& mesh = f.project.scene.mesh;
-  const RayCaster caster(mesh);
-  const WorstRegion region = worst_region(mesh, f.pri, 10);
+namespace {
+// The sampled candidate set (1536 poses) around the K = 10 worst faces,
+// with the structures both energies need.
+struct Sampled {
+  const TriangleMesh& mesh;
+  RayCaster caster;
+  WorstRegion region;
   std::vector<PinholeCamera> cams;
   std::vector<Vec3> existing;
-  for (const auto& v : f.project.scene.views) cams.push_back(v.camera), existing.push_back(v.camera.center());
-  const SafetyChecker safety(mesh, caster, 0.05 * mesh.bounding_box().diagonal());
-  const CandidateSet set = sample_candidates(region, most_common_intrinsics(cams), mean_up(cams),
-                                             median_viewing_distance(cams, caster, region.centroid),
-                                             safety, SamplingOptions{});
-  const EnergyEvaluator energy(mesh, caster, region, existing, EnergyOptions{});
+  CandidateSet set;
+  explicit Sampled(const Fixture& f) : mesh(f.project.scene.mesh), caster(mesh) {
+    region = worst_region(mesh, f.pri, 10);
+    for (const auto& v : f.project.scene.views) cams.push_back(v.camera), existing.push_back(v.camera.center());
+    const SafetyChecker safety(mesh, caster, 0.05 * mesh.bounding_box().diagonal());
+    set = sample_candidates(region, most_common_intrinsics(cams), mean_up(cams),
+                            median_viewing_distance(cams, caster, region.centroid), safety, SamplingOptions{});
+  }
+};
+
+// Times `energy(camera)` over the whole set on state.range(0) threads.
+template <class Energy>
+void time_evaluations(benchmark::State& state, const CandidateSet& set, Energy energy) {
+  tbb::global_control threads(tbb::global_control::max_allowed_parallelism, std::size_t(state.range(0)));
   std::vector<double> out(set.cameras.size());
   for (auto _ : state) {
-    tbb::parallel_for(std::size_t(0), set.cameras.size(),
-                      [&](std::size_t i) { out[i] = energy.evaluate(set.cameras[i]).total; });
+    tbb::parallel_for(std::size_t(0), set.cameras.size(), [&](std::size_t i) { out[i] = energy(set.cameras[i]); });
     benchmark::DoNotOptimize(out.data());
   }
   state.counters["evaluations_per_s"] = benchmark::Counter(
       double(set.cameras.size()) * state.iterations(), benchmark::Counter::kIsRate);
-  state.counters["worst_vertices"] = double(region.vertices.size());
+}
+}  // namespace
+
+// The paper's energy of the sampled set.
+static void BM_CandidateEvaluations(benchmark::State& state) {
+  const Sampled s(fixture());
+  const EnergyEvaluator energy(s.mesh, s.caster, s.region, s.existing, EnergyOptions{});
+  time_evaluations(state, s.set, [&](const PinholeCamera& c) { return energy.evaluate(c).total; });
+  state.counters["worst_vertices"] = double(s.region.vertices.size());
 }
 BENCHMARK(BM_CandidateEvaluations)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 
-// The whole-mesh energy (gain.h) of the same 1536 poses: every cluster's
+// The whole-mesh energy (gain.h) of the same poses: every cluster's
 // visibility and pairs with the views that already see it.
 static void BM_GainEvaluations(benchmark::State& state) {
-  Fixture& f = fixture();
-  tbb::global_control threads(tbb::global_control::max_allowed_parallelism, std::size_t(state.range(0)));
-  const TriangleMesh& mesh = f.project.scene.mesh;
-  const RayCaster caster(mesh);
-  const WorstRegion region = worst_region(mesh, f.pri, 10);
-  std::vector<PinholeCamera> cams;
-  for (const auto& v : f.project.scene.views) cams.push_back(v.camera);
-  const SafetyChecker safety(mesh, caster, 0.05 * mesh.bounding_box().diagonal());
-  const CandidateSet set = sample_candidates(region, most_common_intrinsics(cams), mean_up(cams),
-                                             median_viewing_distance(cams, caster, region.centroid),
-                                             safety, SamplingOptions{});
-  const GainEvaluator gain(mesh, caster, f.pri, cams, GainOptions{});
-  std::vector<double> out(set.cameras.size());
-  for (auto _ : state) {
-    tbb::parallel_for(std::size_t(0), set.cameras.size(),
-                      [&](std::size_t i) { out[i] = gain.evaluate(set.cameras[i]).total; });
-    benchmark::DoNotOptimize(out.data());
-  }
-  state.counters["evaluations_per_s"] = benchmark::Counter(
-      double(set.cameras.size()) * state.iterations(), benchmark::Counter::kIsRate);
+  const Sampled s(fixture());
+  const GainEvaluator gain(s.mesh, s.caster, fixture().pri, s.cams, GainOptions{});
+  time_evaluations(state, s.set, [&](const PinholeCamera& c) { return gain.evaluate(c).total; });
   state.counters["clusters"] = double(gain.num_clusters());
 }
 BENCHMARK(BM_GainEvaluations)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
