@@ -83,6 +83,11 @@ void add_pri_command(CLI::App& app) {
     std::cout << "faces " << s.faces << ": " << s.observed << " observed, " << s.unobserved
               << " unobserved, " << s.textureless << " textureless; " << r.views_used
               << " views; " << r.seconds << " s\n";
+    if (r.views_reduced > 0)
+      std::cout << "photos: " << r.views_reduced << " of " << r.views_used
+                << " JPEGs decoded smaller, their faces' lattices being coarser than their pixels "
+                   "(max_image_reduction "
+                << a->options.max_image_reduction << ")\n";
     if (previous)
       std::cout << "incremental: recomputed " << r.recomputed << " of " << s.faces << " faces, reused "
                 << s.faces - r.recomputed << " from " << a->previous << "; views selected again for "

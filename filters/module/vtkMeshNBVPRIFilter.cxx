@@ -57,6 +57,7 @@ meshnbv::PriOptions RawOptionsOf(vtkMeshNBVPRIFilter* f)
   o.samples_per_side = f->GetSamplesPerSide();
   o.max_views_per_face = f->GetMaxViewsPerFace();
   o.max_incidence_angle = f->GetMaxIncidenceAngle();
+  o.max_image_reduction = f->GetMaxImageReduction();
   o.edge_margin = f->GetEdgeMargin();
   o.support_radius = f->GetSupportRadius();
   o.offset_range = f->GetOffsetRange();
@@ -109,6 +110,7 @@ vtkMeshNBVPRIFilter::vtkMeshNBVPRIFilter()
   this->SamplesPerSide = defaults.samples_per_side;
   this->MaxViewsPerFace = defaults.max_views_per_face;
   this->MaxIncidenceAngle = defaults.max_incidence_angle;
+  this->MaxImageReduction = defaults.max_image_reduction;
   this->EdgeMargin = defaults.edge_margin;
   this->SupportRadius = defaults.support_radius;
   this->OffsetRange = defaults.offset_range;

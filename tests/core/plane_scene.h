@@ -25,6 +25,8 @@ struct PlaneSceneOptions {
   std::uint64_t texture_seed = 3;
   double texture_scale = 0.1;  // the texture's band limit (m)
   double scale = 1.0;          // image size 200x150 and focal length 180 px times this
+  bool look_down = false;      // each camera looks straight down (+y up in its image), not at the centre
+  std::string extension = ".png";  // the photos' format
 };
 
 // The views of the true plane from `eyes`, images under temp_dir(name).
@@ -42,8 +44,10 @@ inline Scene plane_scene(const std::string& name, const Material& material, cons
   for (std::size_t i = 0; i < eyes.size(); ++i) {
     View v;
     v.label = "v" + std::to_string(i);
-    v.camera = PinholeCamera::look_at(eyes[i], Vec3(0, 0, 0), Vec3(0, 1, 0.3), f, f, 0.5 * w - 0.5, 0.5 * h - 0.5, w, h);
-    v.image_path = dir + "/" + v.label + ".png";
+    const Vec3 target = o.look_down ? Vec3(eyes[i].x(), eyes[i].y(), 0) : Vec3(0, 0, 0);
+    const Vec3 up = o.look_down ? Vec3(0, 1, 0) : Vec3(0, 1, 0.3);
+    v.camera = PinholeCamera::look_at(eyes[i], target, up, f, f, 0.5 * w - 0.5, 0.5 * h - 0.5, w, h);
+    v.image_path = dir + "/" + v.label + o.extension;
     render({&truth, &caster, &texture, truth.face_attribute(synth::kMaterialAttribute)}, v.camera)
         .save(v.image_path);
     scene.views.push_back(v);

@@ -5,6 +5,7 @@
 
 #include <cctype>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <opencv2/core.hpp>
@@ -27,13 +28,31 @@ Image::Image(int width, int height, int channels, int bits)
     data_.assign(n, 0);
 }
 
-Image Image::load(const std::string& path, ImageOrientation orientation) {
+bool is_jpeg_file(const std::string& path) {
+  std::FILE* f = std::fopen(path.c_str(), "rb");
+  if (!f) return false;
+  unsigned char head[3] = {0, 0, 0};
+  const std::size_t got = std::fread(head, 1, 3, f);
+  std::fclose(f);
+  return got == 3 && head[0] == 0xFF && head[1] == 0xD8 && head[2] == 0xFF;
+}
+
+Image Image::load(const std::string& path, ImageOrientation orientation, int reduction) {
+  if (reduction != 1 && reduction != 2 && reduction != 4 && reduction != 8)
+    throw Error("image reduction must be 1, 2, 4 or 8, not " + std::to_string(reduction), path);
   std::error_code ec;
   if (!std::filesystem::exists(path, ec)) throw Error("image file not found", path);
   // Any depth, grey or colour as stored (colour without its alpha); the
   // EXIF orientation applied or not as asked.
   int flags = cv::IMREAD_ANYDEPTH | cv::IMREAD_ANYCOLOR;
   if (orientation == ImageOrientation::stored) flags |= cv::IMREAD_IGNORE_ORIENTATION;
+  // OpenCV hands the reduction to libjpeg's DCT scaling for a JPEG; for any
+  // other format it would decode in full and resize, which is no saving and
+  // another filter: those are decoded at full resolution.
+  if (reduction > 1 && !is_jpeg_file(path)) reduction = 1;
+  if (reduction == 2) flags |= cv::IMREAD_REDUCED_GRAYSCALE_2;
+  if (reduction == 4) flags |= cv::IMREAD_REDUCED_GRAYSCALE_4;
+  if (reduction == 8) flags |= cv::IMREAD_REDUCED_GRAYSCALE_8;
   cv::Mat mat;
   try {
     mat = cv::imread(path, flags);
@@ -76,6 +95,7 @@ Image Image::load(const std::string& path, ImageOrientation orientation) {
     void* dst = bits == 16 ? static_cast<void*>(image.pixel16(0, y)) : static_cast<void*>(image.pixel(0, y));
     std::memcpy(dst, out.ptr(y), row_bytes);
   }
+  image.reduction_ = reduction;
   return image;
 }
 
@@ -258,9 +278,12 @@ bool FloatImage::sample(double x, double y, float* out) const {
 
 ImageCache::ImageCache(std::size_t max_bytes) : max_bytes_(max_bytes) {}
 
-std::shared_ptr<const Image> ImageCache::get(const std::string& path, ImageOrientation orientation) {
-  // The key: the path, and for the EXIF orientation a suffix no path holds.
-  const std::string key = orientation == ImageOrientation::exif ? path + std::string("\0exif", 5) : path;
+std::shared_ptr<const Image> ImageCache::get(const std::string& path, ImageOrientation orientation,
+                                             int reduction) {
+  // The key: the path, and for the EXIF orientation and a reduction
+  // suffixes no path holds.
+  std::string key = orientation == ImageOrientation::exif ? path + std::string("\0exif", 5) : path;
+  if (reduction != 1) key += std::string("\0r", 2) + std::to_string(reduction);
   {
     std::lock_guard<std::mutex> lock(mutex_);
     auto it = entries_.find(key);
@@ -270,7 +293,7 @@ std::shared_ptr<const Image> ImageCache::get(const std::string& path, ImageOrien
     }
   }
   // Decode outside the lock so that threads load different images in parallel.
-  auto image = std::make_shared<const Image>(Image::load(path, orientation));
+  auto image = std::make_shared<const Image>(Image::load(path, orientation, reduction));
   std::lock_guard<std::mutex> lock(mutex_);
   ++loads_;
   auto it = entries_.find(key);

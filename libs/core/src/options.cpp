@@ -218,6 +218,15 @@ const OptionTable<PriOptions>& pri_option_table() {
           "count as seeing the face (grazing views give slivers); 90 = the plain back-face rule",
           left_open(0, 90, "degrees"), [](const O& o) { return o.max_incidence_angle; },
           [](O& o, double x) { o.max_incidence_angle = x; }),
+      int_option<O>(
+          "max_image_reduction", "Max image reduction",
+          "A JPEG photo may be decoded 2, 4 or 8 times smaller on each side (the largest power of "
+          "two up to this) when every face that may use it has its sampling lattice at least that "
+          "many pixels apart there (the decoder's DCT scaling): faster and less memory, but the "
+          "averaged pixels lose fine texture and PRI finds error less well; 1 = always at full "
+          "resolution",
+          closed(1, 8), [](const O& o) { return o.max_image_reduction; },
+          [](O& o, std::int64_t x) { o.max_image_reduction = clamp_to_int(x); }),
       real_option<O>(
           "edge_margin", "Edge margin",
           "Pixels. The sampling lattice is contracted towards the face's centroid so that it "

@@ -233,6 +233,106 @@ PriFaceViews select_views(const TriangleMesh& mesh, const std::vector<Vec3>& nor
   return out;
 }
 
+// Face f as camera `cam` may see it: its vertices in front and in the
+// image, its front towards `centre` within min_cosine; `p` its projection.
+// A superset of the views select_views keeps (no occlusion test).
+bool may_use(const TriangleMesh& mesh, const std::vector<Vec3>& normals, const PinholeCamera& cam,
+             const Vec3& centre, std::size_t f, double min_cosine, Vec2 p[3]) {
+  const Face& face = mesh.faces[f];
+  const Vec3 centroid = mesh.face_centroid(f);
+  const Vec3 to = centre - centroid;
+  const double d = to.norm();
+  if (!(d > 0) || normals[f].dot(to) < min_cosine * d || !(normals[f].dot(to) > 0)) return false;
+  for (int c = 0; c < 3; ++c)
+    if (!cam.project(mesh.vertices[face[c]], &p[c]) || !cam.in_image(p[c])) return false;
+  return true;
+}
+
+// The least distance (pixels) between rows of a lattice of r subdivisions
+// per side on the projected triangle p: its least height over r.
+double row_spacing(const Vec2 p[3], double r) {
+  const double max_edge = std::max({(p[1] - p[0]).norm(), (p[2] - p[1]).norm(), (p[0] - p[2]).norm()});
+  return max_edge > 0 ? 2.0 * projected_area(p[0], p[1], p[2]) / max_edge / r : 0.0;
+}
+
+// PriViewSelection::reductions. A camera's photo can be decoded k times
+// smaller when every face that may use it has its lattice rows at least k
+// pixels apart there: the reduced image then still resolves everything
+// the lattice samples (its Nyquist limit). The spacing of a face in a view
+// is bounded below with the face's largest possible r and contraction
+// (over every view that may see it) and above with the least; a first
+// pass on the upper bound settles most views at 1 after a few faces.
+std::vector<int> view_reductions(const Scene& scene, const PriOptions& o, const std::vector<std::size_t>& image_views,
+                                 const std::vector<PinholeCamera>& cams, const std::vector<Vec3>& centres) {
+  std::vector<int> out(cams.size(), 1);
+  if (o.max_image_reduction <= 1) return out;
+  std::vector<std::size_t> candidates;  // views with a JPEG file
+  for (std::size_t i = 0; i < cams.size(); ++i) {
+    const View& v = scene.views[image_views[i]];
+    if (!v.pixels && is_jpeg_file(v.image_path)) candidates.push_back(i);
+  }
+  if (candidates.empty()) return out;
+  const TriangleMesh& mesh = scene.mesh;
+  const std::vector<Vec3> normals = mesh.face_normals();
+  const double min_cosine = std::cos(o.max_incidence_angle * M_PI / 180.0);
+  const std::size_t F = mesh.num_faces();
+  const bool offset = o.measure == Measure::Offset;
+  const int max_side = offset ? kOffsetMaxSide : 32;
+  // The lattice's r from the largest projected edge, as select_views sets it.
+  const auto side = [&](double max_edge, double keep) {
+    if (o.samples_per_side > 0) return double(o.samples_per_side);
+    return double(std::clamp(int(std::ceil(offset ? max_edge * keep / kOffsetSpacing : max_edge)), 2, max_side));
+  };
+  const auto longest = [](const Vec2 p[3]) {
+    return std::max({(p[1] - p[0]).norm(), (p[2] - p[1]).norm(), (p[0] - p[2]).norm()});
+  };
+  // Pass 1, upper bound: r from this view's edges only, no contraction.
+  std::vector<char> open(cams.size(), 0);
+  tbb::parallel_for(std::size_t(0), candidates.size(), [&](std::size_t j) {
+    const std::size_t i = candidates[j];
+    Vec2 p[3];
+    for (std::size_t f = 0; f < F; ++f)
+      if (may_use(mesh, normals, cams[i], centres[i], f, min_cosine, p) &&
+          row_spacing(p, side(longest(p), 1.0 - (o.edge_margin > 0 ? kMaxShrink : 0.0))) < 2.0)
+        return;
+    open[i] = 1;
+  });
+  std::vector<std::size_t> left;
+  for (std::size_t i : candidates)
+    if (open[i]) left.push_back(i);
+  if (left.empty()) return out;
+  // Pass 2, lower bound: per face, the largest r and contraction over every
+  // view that may see it.
+  std::vector<float> face_side(F), face_keep(F);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, F), [&](const auto& r) {
+    for (std::size_t f = r.begin(); f < r.end(); ++f) {
+      double max_edge = 0, shrink = 0;
+      Vec2 p[3];
+      for (std::size_t i = 0; i < cams.size(); ++i) {
+        if (!may_use(mesh, normals, cams[i], centres[i], f, min_cosine, p)) continue;
+        const double edge = longest(p);
+        max_edge = std::max(max_edge, edge);
+        const double inner = edge > 0 ? 2.0 * projected_area(p[0], p[1], p[2]) / (3.0 * edge) : 0.0;
+        if (o.edge_margin > 0) shrink = std::max(shrink, inner > 0 ? o.edge_margin / inner : 1.0);
+      }
+      face_keep[f] = float(1.0 - std::min(shrink, kMaxShrink));
+      face_side[f] = float(side(max_edge, 1.0));
+    }
+  });
+  tbb::parallel_for(std::size_t(0), left.size(), [&](std::size_t j) {
+    const std::size_t i = left[j];
+    double least = std::numeric_limits<double>::infinity();
+    Vec2 p[3];
+    for (std::size_t f = 0; f < F && least >= 2.0; ++f)
+      if (may_use(mesh, normals, cams[i], centres[i], f, min_cosine, p))
+        least = std::min(least, double(face_keep[f]) * row_spacing(p, double(face_side[f])));
+    int k = 1;
+    while (2 * k <= o.max_image_reduction && 2 * k <= least) k *= 2;
+    out[i] = k;
+  });
+  return out;
+}
+
 }  // namespace
 
 double ncc_error(const float* a, const float* b, std::size_t n, double min_variance) {
@@ -413,6 +513,11 @@ PriViewSelection select_pri_views(const Scene& scene, const PriOptions& options,
     centres.push_back(s.cameras.back().center());
   }
   s.options_key = pri_options_key(options);
+  {
+    const int threads = options.threads > 0 ? options.threads : tbb::this_task_arena::max_concurrency();
+    tbb::task_arena arena(threads);
+    arena.execute([&] { s.reductions = view_reductions(scene, options, s.image_views, s.cameras, centres); });
+  }
   if (views_only) return s;
   const std::size_t F = mesh.num_faces();
   for (std::size_t j = 0; j < faces.size(); ++j)
@@ -475,6 +580,13 @@ std::uint64_t mix64(std::uint64_t x) {
   return x ^ (x >> 31);
 }
 std::uint64_t combine(std::uint64_t h, std::uint64_t v) { return mix64(h ^ mix64(v)); }
+
+// What a face's value takes from view v: its key, and its photo's
+// reduction when reduced (a whole photo leaves the key as it was).
+std::uint64_t view_evidence(const PriViewSelection& s, std::size_t v) {
+  const int r = s.reductions.empty() ? 1 : s.reductions[v];
+  return r > 1 ? combine(s.view_keys[v], std::uint64_t(r)) : s.view_keys[v];
+}
 std::uint64_t combine(std::uint64_t h, double v) {
   std::uint64_t bits;
   std::memcpy(&bits, &v, sizeof bits);
@@ -677,7 +789,26 @@ struct ViewSampler {
   bool linear;
   Mat3 KR;
   Vec3 Kt;
+  // The plane is the photo decoded `reduction` times smaller: a full-size
+  // pixel position x is x' = (x + 0.5) / reduction - 0.5 on it (a reduced
+  // pixel is centred on the block it averages).
+  int reduction = 1;
 };
+
+// Camera cam's sampler on `plane`, decoded `reduction` times smaller.
+ViewSampler make_sampler(const FloatImage& plane, const PinholeCamera& cam, int channels, int reduction) {
+  ViewSampler v{plane, cam, channels, !cam.has_distortion(), cam.K() * cam.R, cam.K() * cam.t, reduction};
+  if (reduction > 1) {
+    // The pixel map x' = x / k + (0.5 / k - 0.5) folded into the homogeneous
+    // projection (rows 0 and 1 scaled, plus the offset times row 2).
+    const double inv = 1.0 / reduction, shift = 0.5 * inv - 0.5;
+    for (int r = 0; r < 2; ++r) {
+      v.KR.row(r) = inv * v.KR.row(r) + shift * v.KR.row(2);
+      v.Kt[r] = inv * v.Kt[r] + shift * v.Kt[2];
+    }
+  }
+  return v;
+}
 
 // Samples the lattice of triangle (w0, w1, w2), rs subdivisions per side,
 // into `out`; false when a sample is behind the camera or off the image.
@@ -723,7 +854,9 @@ inline bool sample_lattice(const ViewSampler& view, const Vec3& w0, const Vec3& 
       } else {
         const Vec3 X = (a * w0 + b * w1 + c * w2) / double(rs);
         Vec2 px;
-        ok = view.cam.project(X, &px) && plane.sample(px.x(), px.y(), o);
+        ok = view.cam.project(X, &px);
+        if (ok && view.reduction > 1) px = (px.array() + 0.5) / double(view.reduction) - 0.5;
+        ok = ok && plane.sample(px.x(), px.y(), o);
       }
       if (!ok) return false;
     }
@@ -763,13 +896,16 @@ inline void sample_face(const TriangleMesh& mesh, std::size_t f, const PriFaceVi
 struct PreparedView {
   std::size_t view = 0;
   FloatImage plane;
+  int reduction = 1;  // the plane's (Image::reduction)
   std::exception_ptr error;  // the decoding's, thrown when the view's turn comes
   tbb::task_group work;
 };
 
 void prepare_view(const PriInputs& in, PreparedView* p) {
   try {
-    const auto image = in.scene.image(in.selection.image_views[p->view]);
+    const int reduction = in.selection.reductions.empty() ? 1 : in.selection.reductions[p->view];
+    const auto image = in.scene.image(in.selection.image_views[p->view], reduction);
+    p->reduction = image->reduction();
     p->plane = in.options.color ? FloatImage::rgb_of(*image) : FloatImage::luminance_of(*image);
   } catch (...) {
     p->error = std::current_exception();
@@ -819,11 +955,11 @@ class ViewQueue {
 };
 
 // Camera i samples every face of the block that it sees, on `plane`.
-void sample_view(const PriInputs& in, const SampleBlock& block, std::size_t i, const FloatImage& plane) {
+void sample_view(const PriInputs& in, const SampleBlock& block, std::size_t i, const FloatImage& plane,
+                 int reduction) {
   const std::vector<std::pair<std::size_t, int>>& faces = block.by_view[i];
   const std::vector<PriFaceViews>& fv = in.selection.faces;
-  const PinholeCamera& cam = in.selection.cameras[i];
-  const ViewSampler view{plane, cam, in.channels, !cam.has_distortion(), cam.K() * cam.R, cam.K() * cam.t};
+  const ViewSampler view = make_sampler(plane, in.selection.cameras[i], in.channels, reduction);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, faces.size()), [&](const auto& r) {
     for (std::size_t j = r.begin(); j < r.end(); ++j) {
       const auto [f, k] = faces[j];
@@ -916,7 +1052,7 @@ float texture_of(const std::vector<const float*>& patches, std::size_t at, std::
 void set_face_evidence(const PriInputs& in, std::size_t f, std::size_t usable, PriResult* result) {
   const PriFaceViews& fv = in.selection.faces[f];
   std::uint64_t key = in.selection.options_key;
-  for (int v : fv.views) key = combine(key, in.selection.view_keys[std::size_t(v)]);
+  for (int v : fv.views) key = combine(key, view_evidence(in.selection, std::size_t(v)));
   result->evidence_key[f] = key;
   result->pri_views[f] = int(usable);
   result->pri_samples[f] = int(lattice_points(fv.samples_per_side));
@@ -1008,11 +1144,11 @@ StreamBlock plan_stream_block(const PriInputs& in, std::size_t begin) {
 
 // Camera i samples every face of the block that it sees, on `plane`, into
 // the faces' accumulators.
-void stream_view(const PriInputs& in, StreamBlock* block, std::size_t i, const FloatImage& plane) {
+void stream_view(const PriInputs& in, StreamBlock* block, std::size_t i, const FloatImage& plane,
+                 int reduction) {
   const std::vector<std::uint32_t>& faces = block->by_view[i];
   const std::vector<PriFaceViews>& fv = in.selection.faces;
-  const PinholeCamera& cam = in.selection.cameras[i];
-  const ViewSampler view{plane, cam, in.channels, !cam.has_distortion(), cam.K() * cam.R, cam.K() * cam.t};
+  const ViewSampler view = make_sampler(plane, in.selection.cameras[i], in.channels, reduction);
   const Measure measure = in.options.measure;
   const double min_variance = in.options.textureless_variance;
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, faces.size()), [&](const auto& r) {
@@ -1202,6 +1338,8 @@ PriPart compute_pri_part(const Scene& scene, const PriOptions& options, const Pr
   PriResult& result = part.values;
   init_result(&result, n, options);
   result.views_used = selection.image_views.size();
+  result.views_reduced = std::size_t(std::count_if(selection.reductions.begin(), selection.reductions.end(),
+                                                   [](int r) { return r > 1; }));
   result.recomputed = n;
   const std::size_t loads_before = scene.images ? scene.images->loads() : 0;
   tbb::task_arena arena(thread_count(options));
@@ -1231,7 +1369,7 @@ PriPart compute_pri_part(const Scene& scene, const PriOptions& options, const Pr
         for (std::size_t i = 0; i < views; ++i) {
           if (!block.by_view[i].empty()) {
             const std::unique_ptr<PreparedView> view = queue.next();
-            stream_view(in, &block, i, view->plane);
+            stream_view(in, &block, i, view->plane, view->reduction);
           }
           progress_at(block.begin, block.end, i);
         }
@@ -1247,7 +1385,7 @@ PriPart compute_pri_part(const Scene& scene, const PriOptions& options, const Pr
         const std::size_t i = order[j];
         if (!block.by_view[i].empty()) {
           const std::unique_ptr<PreparedView> view = queue.next();
-          sample_view(in, block, i, view->plane);
+          sample_view(in, block, i, view->plane, view->reduction);
         }
         progress_at(block.begin, block.end, j);
       }
@@ -1277,6 +1415,7 @@ PriResult assemble_pri(const Scene& scene, const PriOptions& options, const std:
     result.recomputed += part.values.recomputed;
     result.images_decoded += part.values.images_decoded;
     result.views_used = std::max(result.views_used, part.values.views_used);
+    result.views_reduced = std::max(result.views_reduced, part.values.views_reduced);
   }
   const std::size_t missing = std::size_t(std::count(seen.begin(), seen.end(), std::uint8_t(0)));
   if (missing) throw Error("the PRI parts miss " + std::to_string(missing) + " of " + std::to_string(F) + " faces");
@@ -1533,6 +1672,7 @@ PriReuse plan_incremental_pri(const Scene& scene, const PriOptions& options, con
   changed.image_views = views.image_views;
   changed.cameras = views.cameras;
   changed.view_keys = views.view_keys;
+  changed.reductions = views.reductions;
   changed.options_key = views.options_key;
   PriViewSelection selection;
   if (!again.empty()) selection = select_pri_views(scene, options, progress, again, caster);
@@ -1547,7 +1687,7 @@ PriReuse plan_incremental_pri(const Scene& scene, const PriOptions& options, con
     const PriFaceViews& fv = selection.faces[j++];
     // The key score_block would give the face now.
     std::uint64_t key = views.options_key;
-    for (int v : fv.views) key = combine(key, views.view_keys[std::size_t(v)]);
+    for (int v : fv.views) key = combine(key, view_evidence(views, std::size_t(v)));
     if (match[f] != kNone && old.evidence_key[match[f]] == key) {
       out.reused.faces.push_back(std::uint32_t(f));
       from.push_back(match[f]);

@@ -223,6 +223,7 @@ std::string pri_summary_json(const PriResult& result, const PriOptions& options,
   j["recomputed_faces"] = result.recomputed;
   j["reselected_faces"] = result.reselected;
   j["images_decoded"] = result.images_decoded;
+  j["views_reduced"] = result.views_reduced;
   j["seconds"] = result.seconds;
   return j.dump(2) + "\n";
 }

@@ -19,20 +19,26 @@ void check_one_source(const View& view) {
 template <class Get>
 std::shared_ptr<const Image> file_image(const View& view, Get get) {
   auto img = get(view.orientation);
+  // A reduced decode (Image::reduction) is ceil(size / reduction) a side.
+  const auto reduced = [](int size, int r) { return (size + r - 1) / r; };
   const auto fits = [&](const Image& im) {
-    return im.width() == view.camera.width && im.height() == view.camera.height;
+    return im.width() == reduced(view.camera.width, im.reduction()) &&
+           im.height() == reduced(view.camera.height, im.reduction());
   };
   if (fits(*img)) return img;
   std::string note;
-  if (view.orientation == ImageOrientation::stored && img->width() == view.camera.height &&
-      img->height() == view.camera.width) {
+  if (view.orientation == ImageOrientation::stored &&
+      img->width() == reduced(view.camera.height, img->reduction()) &&
+      img->height() == reduced(view.camera.width, img->reduction())) {
     // Stored on its side: the tool saw the photo turned by its EXIF tag.
     auto turned = get(ImageOrientation::exif);
     if (fits(*turned)) return turned;
     note = " (turned by its EXIF orientation it is still " + std::to_string(turned->width()) + "x" +
            std::to_string(turned->height()) + ")";
   }
-  throw Error("image is " + std::to_string(img->width()) + "x" + std::to_string(img->height()) +
+  const std::string reduced_note =
+      img->reduction() > 1 ? " decoded " + std::to_string(img->reduction()) + " times smaller" : "";
+  throw Error("image is " + std::to_string(img->width()) + "x" + std::to_string(img->height()) + reduced_note +
                   " but its camera says " + std::to_string(view.camera.width) + "x" +
                   std::to_string(view.camera.height) + note,
               view.image_path, -1, "view '" + view.label + "'");
@@ -48,13 +54,13 @@ const std::string& View::image_file(const std::string& purpose) const {
   return image_path;
 }
 
-std::shared_ptr<const Image> Scene::image(std::size_t i) const {
+std::shared_ptr<const Image> Scene::image(std::size_t i, int reduction) const {
   if (i >= views.size()) throw Error("view index " + std::to_string(i) + " out of range");
   const View& view = views[i];
   if (!view.has_image()) throw Error("view '" + view.label + "' has no image");
   check_one_source(view);
   if (!view.pixels)
-    return file_image(view, [&](ImageOrientation o) { return images->get(view.image_path, o); });
+    return file_image(view, [&](ImageOrientation o) { return images->get(view.image_path, o, reduction); });
   const Image& im = *view.pixels;
   if (im.width() != view.camera.width || im.height() != view.camera.height)
     throw Error("in-memory image is " + std::to_string(im.width()) + "x" + std::to_string(im.height()) +

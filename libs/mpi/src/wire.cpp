@@ -238,6 +238,7 @@ std::string write_pri_options(const PriOptions& o) {
   w.put(o.support_radius);
   w.put(o.offset_range);
   w.put(std::int32_t(o.offset_steps));
+  w.put(std::int32_t(o.max_image_reduction));
   w.put(o.visibility.relative_eps);
   w.put(o.visibility.absolute_eps_of_diagonal);
   return w.take();
@@ -260,6 +261,7 @@ PriOptions read_pri_options(const std::string& bytes) {
   o.support_radius = r.get_finite();
   o.offset_range = r.get_finite();
   o.offset_steps = r.get<std::int32_t>();
+  o.max_image_reduction = r.get<std::int32_t>();
   o.visibility.relative_eps = r.get_finite();
   o.visibility.absolute_eps_of_diagonal = r.get_finite();
   r.finish();
@@ -302,6 +304,7 @@ std::string write_pri_parts(const std::vector<PriPart>& parts) {
     w.put(std::uint64_t(v.views_used));
     w.put(std::uint64_t(v.recomputed));
     w.put(std::uint64_t(v.images_decoded));
+    w.put(std::uint64_t(v.views_reduced));
   }
   return w.take();
 }
@@ -328,6 +331,7 @@ std::vector<PriPart> read_pri_parts(const std::string& bytes) {
     v.views_used = std::size_t(r.get<std::uint64_t>());
     v.recomputed = std::size_t(r.get<std::uint64_t>());
     v.images_decoded = std::size_t(r.get<std::uint64_t>());
+    v.views_reduced = std::size_t(r.get<std::uint64_t>());
     const std::size_t m = p.faces.size();
     for (std::size_t size : {v.pri.size(), v.pri_views.size(), v.status.size(), v.pri_pairs.size(),
                              v.pri_samples.size(), v.pri_texture.size(), v.evidence_key.size()})

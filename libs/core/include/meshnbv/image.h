@@ -19,6 +19,10 @@ namespace meshnbv {
 // viewer shows the photo.
 enum class ImageOrientation { stored, exif };
 
+// True when the file starts as a JPEG does (FF D8 FF): the files that
+// Image::load can decode reduced.
+bool is_jpeg_file(const std::string& path);
+
 class Image {
  public:
   Image() = default;
@@ -28,7 +32,14 @@ class Image {
   // Throws Error when the file is missing or does not decode. Grey images
   // stay grey, colour images become RGB (alpha dropped); 16-bit files stay
   // 16-bit, floating-point ones become 16-bit ([0, 1] -> [0, 65535]).
-  static Image load(const std::string& path, ImageOrientation orientation = ImageOrientation::stored);
+  // `reduction` (1, 2, 4 or 8): a JPEG file is decoded that many times
+  // smaller on each side by the decoder's DCT scaling (libjpeg's
+  // scale_denom: ceil(W / reduction) x ceil(H / reduction), reduced pixel j
+  // centred on full-resolution pixel reduction j + (reduction - 1) / 2, an
+  // average of its block); any other format at full resolution.
+  // reduction() tells which was done.
+  static Image load(const std::string& path, ImageOrientation orientation = ImageOrientation::stored,
+                    int reduction = 1);
   // Writes PNG/JPEG/TIFF by extension; throws Error on failure. A 16-bit
   // image goes to PNG and TIFF at 16 bits, to other formats at 8.
   void save(const std::string& path) const;
@@ -38,6 +49,9 @@ class Image {
   int channels() const { return channels_; }
   int bits() const { return bits_; }
   bool empty() const { return width_ == 0; }
+  // How many times smaller on each side than its file this image was
+  // decoded (load's `reduction` where it applied; 1 otherwise).
+  int reduction() const { return reduction_; }
   std::size_t bytes() const { return bits_ == 16 ? data16_.size() * 2 : data_.size(); }
   // The raw samples, row-major, channels interleaved: bytes() bytes
   // (native-endian 16-bit values for bits() == 16).
@@ -75,7 +89,7 @@ class Image {
   bool sample_rgb(double x, double y, float out[3]) const;
 
  private:
-  int width_ = 0, height_ = 0, channels_ = 0, bits_ = 8;
+  int width_ = 0, height_ = 0, channels_ = 0, bits_ = 8, reduction_ = 1;
   std::vector<std::uint8_t> data_;     // bits_ == 8
   std::vector<std::uint16_t> data16_;  // bits_ == 16
 };
@@ -127,9 +141,10 @@ class ImageCache {
  public:
   explicit ImageCache(std::size_t max_bytes = std::size_t(1) << 30);
 
-  // The file decoded with that orientation (each orientation its own entry).
+  // The file decoded with that orientation and reduction (Image::load;
+  // each its own entry).
   std::shared_ptr<const Image> get(const std::string& path,
-                                   ImageOrientation orientation = ImageOrientation::stored);
+                                   ImageOrientation orientation = ImageOrientation::stored, int reduction = 1);
   void clear();
   std::size_t bytes_held() const;
   std::size_t max_bytes() const { return max_bytes_; }

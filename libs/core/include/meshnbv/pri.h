@@ -67,6 +67,15 @@ struct PriOptions {
   // offset: hypotheses per side of zero; hypothesis j sits at
   // offset_range (j / offset_steps)^1.5 (finer near the face).
   int offset_steps = 4;
+  // A JPEG photo may be decoded 2, 4 or 8 times smaller on each side (the
+  // largest power of two up to this; the decoder's DCT scaling,
+  // Image::load) when every face that may sample it has its lattice rows
+  // at least that many pixels apart there: faster and less memory [beyond
+  // the SPEC, docs/deviations.md]. Default 1 (always whole): where it
+  // applies, the averaged pixels lose the fine texture that shows a face's
+  // misregistration, and PRI finds error less well (measured:
+  // bench/results/photos/reduction.md).
+  int max_image_reduction = 1;
   VisibilityOptions visibility;
 
   void check() const;  // throws Error for values out of range
@@ -102,6 +111,7 @@ struct PriResult {
   std::size_t recomputed = 0;    // faces computed by this call (the others were reused)
   std::size_t reselected = 0;    // faces whose views this call selected (all, or fewer when incremental)
   std::size_t images_decoded = 0;  // image decodes this call needed (cache misses)
+  std::size_t views_reduced = 0;   // views whose photo was decoded reduced (max_image_reduction)
   double seconds = 0;
 };
 
@@ -124,6 +134,12 @@ struct PriViewSelection {
   std::vector<std::size_t> image_views;  // scene view of each camera below
   std::vector<PinholeCamera> cameras;
   std::vector<std::uint64_t> view_keys;  // pri_view_key of each camera's view
+  // Per camera, how many times smaller its photo is decoded (1, 2, 4, 8;
+  // max_image_reduction): the largest that keeps every face that may use
+  // the view (in its frustum, facing it within max_incidence_angle; no
+  // occlusion test) sampled at least that many pixels apart. Depends on the
+  // whole mesh, never on the faces selected for, so tiles and ranks agree.
+  std::vector<int> reductions;
   std::uint64_t options_key = 0;         // pri_options_key
   // The faces selected for: empty = every face of the mesh (faces[f] is
   // face f); else ascending face ids, faces[j] being face face_ids[j].

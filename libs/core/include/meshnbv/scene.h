@@ -92,8 +92,11 @@ struct Scene {
   // are the camera's swapped is read turned by its EXIF tag when that gives
   // the camera's size). Throws Error when the view has no image or both
   // sources, the file is missing or does not decode, or the image's size
-  // differs from the camera's.
-  std::shared_ptr<const Image> image(std::size_t view) const;
+  // differs from the camera's. `reduction` (1, 2, 4, 8): a JPEG file is
+  // decoded that many times smaller (Image::load; the image's reduction()
+  // says whether it was, and its size is then the camera's divided, rounded
+  // up); in-memory pixels are always whole.
+  std::shared_ptr<const Image> image(std::size_t view, int reduction = 1) const;
   std::size_t num_views_with_image() const;
   // Checks every camera (PinholeCamera::check), that no view has both image
   // sources, and the mesh (validate).
