@@ -319,13 +319,14 @@ def wire_seeds():
     options = (struct.pack("<I", 0x4D4E4F31) + struct.pack("<i", 2) + struct.pack("<i", 0) +
                struct.pack("<i", 4) + struct.pack("<B", 0) + struct.pack("<i", 0) + struct.pack("<d", 1e-6) +
                struct.pack("<d", 80) + struct.pack("<B", 1) + struct.pack("<d", 0.5) + struct.pack("<d", 4) +
-               struct.pack("<d", 3) + struct.pack("<i", 4) + struct.pack("<d", 1e-4) + struct.pack("<d", 1e-6))
+               struct.pack("<d", 3) + struct.pack("<i", 4) + struct.pack("<i", 1) + struct.pack("<d", 1e-4) +
+               struct.pack("<d", 1e-6))
     write("wire", "options.bin", options)
     write("wire", "faces.bin", struct.pack("<I", 0x4D4E4631) + vec("I", [0, 2, 5]))
     part = (vec("I", [1, 4]) + vec("f", [0.5, float("nan")]) + vec("i", [3, 1]) + vec("B", [0, 1]) +
             vec("i", [3, 0]) + vec("i", [6, 6]) + vec("f", [0.1, float("nan")]) + vec("Q", [12345, 678]) +
-            vec("f", [0.25, float("nan")]) + vec("f", [2, 0]) + vec("f", [0.01, 0]) + struct.pack("<3Q", 2, 2, 1))
-    empty = b"".join(vec(f, []) for f in "IfiBiifQfff") + struct.pack("<3Q", 2, 0, 0)
+            vec("f", [0.25, float("nan")]) + vec("f", [2, 0]) + vec("f", [0.01, 0]) + struct.pack("<4Q", 2, 2, 1, 0))
+    empty = b"".join(vec(f, []) for f in "IfiBiifQfff") + struct.pack("<4Q", 2, 0, 0, 0)
     write("wire", "parts.bin", struct.pack("<I", 0x4D4E5031) + struct.pack("<Q", 2) + part + empty)
     points = lambda pts: vec("d", [c for p in pts for c in p])
     score = (struct.pack("<I", 0x4D4E4A31) + struct.pack("<QB", 77, 1) + vec("d", xyz) +
