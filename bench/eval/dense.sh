@@ -12,12 +12,8 @@
 # Results: bench/results/eval/dense/{quality.json,summary.md,loop_temple/}
 # (bench/eval/dense_summary.py). Caches and datasets go to
 # $MESHNBV_EVAL_WORK (default ../eval-work beside the repository).
-set -euo pipefail
-ROOT=$(cd "$(dirname "$0")/../.." && pwd)
-BUILD=${1:-$ROOT/build}
-MESHNBV=$BUILD/apps/meshnbv
-SHARED=${MESHNBV_SHARED_DATA:-$ROOT/../shared/data}
-WORK=${MESHNBV_EVAL_WORK:-$ROOT/../eval-work}
+# shellcheck source=env.sh
+source "$(dirname "$0")/env.sh"
 RESULTS=$ROOT/bench/results/eval/dense
 ONLY=${ONLY:-all}
 TEMPLE=$SHARED/middlebury/templeRing

@@ -19,12 +19,8 @@
 # COLMAP caches and the synthetic datasets go to $MESHNBV_EVAL_WORK
 # (default ../eval-work beside the repository), shared with run.sh and dense.sh.
 # Needs colmap and python3-matplotlib. Timings of a run: its results.md.
-set -euo pipefail
-ROOT=$(cd "$(dirname "$0")/../.." && pwd)
-BUILD=${1:-$ROOT/build}
-MESHNBV=$BUILD/apps/meshnbv
-SHARED=${MESHNBV_SHARED_DATA:-$ROOT/../shared/data}
-WORK=${MESHNBV_EVAL_WORK:-$ROOT/../eval-work}
+# shellcheck source=env.sh
+source "$(dirname "$0")/env.sh"
 BACKEND=${BACKEND:-sparse}
 BOOTSTRAPS=${BOOTSTRAPS:-5}
 SEEDS=${SEEDS:-1 2 3 4 5}
@@ -60,6 +56,7 @@ strategies() {
   run "$dataset" coverage "$@" --strategy coverage
   run "$dataset" nbv "$@" --strategy nbv
   run "$dataset" nbv_recon "$@" --strategy nbv --energy reconstructability
+  run "$dataset" nbv_recon_nohull "$@" --strategy nbv --energy reconstructability --no-explore-hull
 }
 
 for dataset in $ONLY; do

@@ -13,12 +13,8 @@
 # go to $MESHNBV_EVAL_WORK (default ../eval-work beside the repository:
 # large, never committed). Needs colmap and python3-matplotlib.
 # About 26 minutes on 2 cores from scratch (COLMAP's matching, once per dataset, 7 of them).
-set -euo pipefail
-ROOT=$(cd "$(dirname "$0")/../.." && pwd)
-BUILD=${1:-$ROOT/build}
-MESHNBV=$BUILD/apps/meshnbv
-SHARED=${MESHNBV_SHARED_DATA:-$ROOT/../shared/data}
-WORK=${MESHNBV_EVAL_WORK:-$ROOT/../eval-work}
+# shellcheck source=env.sh
+source "$(dirname "$0")/env.sh"
 RESULTS=$ROOT/bench/results/eval
 ONLY=${ONLY:-all}
 RUNS=${RUNS:-.*}

@@ -152,6 +152,7 @@ meshnbv::SuggestOptions RawOptionsOf(vtkMeshNBVNextBestViewFilter* f)
   o.gain.target = f->GetGainTarget();
   o.gain.exploration_weight = f->GetExplorationWeight();
   o.gain.clusters = f->GetGainClusters();
+  o.gain.explore_hull = f->GetExploreHull() != 0;
   o.energy.weights = { f->GetWeightOcclusion(), f->GetWeightFocus(), f->GetWeightParallax(),
     f->GetWeightIncidence() };
   o.energy.penalty = f->GetPenalty();
@@ -206,6 +207,7 @@ vtkMeshNBVNextBestViewFilter::vtkMeshNBVNextBestViewFilter()
   this->GainTarget = defaults.gain.target;
   this->ExplorationWeight = defaults.gain.exploration_weight;
   this->GainClusters = defaults.gain.clusters;
+  this->ExploreHull = defaults.gain.explore_hull;
   this->WeightOcclusion = defaults.energy.weights[0];
   this->WeightFocus = defaults.energy.weights[1];
   this->WeightParallax = defaults.energy.weights[2];

@@ -125,6 +125,17 @@ public:
 
   ///@{
   /**
+   * RECONSTRUCTABILITY: the part of the mesh's convex hull that no view
+   * sees, away from the mesh, stands for surface not yet reconstructed and
+   * weighs as exploration (`explore_hull`).
+   */
+  vtkSetMacro(ExploreHull, vtkTypeBool);
+  vtkGetMacro(ExploreHull, vtkTypeBool);
+  vtkBooleanMacro(ExploreHull, vtkTypeBool);
+  ///@}
+
+  ///@{
+  /**
    * Energy weights m1..m4 of the occlusion, focus, parallax and incidence
    * terms (`weight_occlusion`, `weight_focus`, `weight_parallax`,
    * `weight_incidence`).
@@ -265,6 +276,7 @@ protected:
   double GainTarget;
   double ExplorationWeight;
   int GainClusters;
+  vtkTypeBool ExploreHull;
   double WeightOcclusion;
   double WeightFocus;
   double WeightParallax;

@@ -4,9 +4,13 @@
 
 #include <cmath>
 #include <limits>
+#include <map>
+#include <random>
+#include <set>
 
 #include "meshnbv/error.h"
 #include "meshnbv/gain.h"
+#include "meshnbv/hull.h"
 #include "meshnbv/planner.h"
 #include "meshnbv/raycaster.h"
 
@@ -314,4 +318,96 @@ TEST(Gain, PlannerBatchesCoverTheMesh) {
   // Every given candidate is ranked, with its terms.
   ASSERT_EQ(r.ranking.size(), 4u);
   for (const auto& c : r.ranking) EXPECT_NEAR(c.energy.total, c.energy.refinement + c.energy.exploration, 1e-12);
+}
+
+TEST(Hull, CubeHullIsOutwardWithItsArea) {
+  std::vector<Vec3> points;
+  for (int k = 0; k < 8; ++k) points.push_back(Vec3(k & 1 ? 1 : -1, k & 2 ? 1 : -1, k & 4 ? 1 : -1));
+  points.push_back(Vec3(0.2, -0.1, 0.3));  // inside
+  const std::vector<HullTriangle> hull = convex_hull_triangles(points);
+  ASSERT_EQ(hull.size(), 12u);
+  double area = 0;
+  for (const HullTriangle& t : hull) {
+    const Vec3 n = (t[1] - t[0]).cross(t[2] - t[0]);
+    area += 0.5 * n.norm();
+    EXPECT_GT(n.dot((t[0] + t[1] + t[2]) / 3), 0.0) << "an inward triangle";
+  }
+  EXPECT_NEAR(area, 24.0, 1e-12);
+  // Coplanar or too few points span no solid.
+  EXPECT_TRUE(convex_hull_triangles({Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0)}).empty());
+  EXPECT_TRUE(convex_hull_triangles(gain_test::square(4).vertices).empty());
+}
+
+// A ground square and a wall along its -y edge, seen from -y: the hull's
+// slanted face behind the wall and its sides are surface nobody has seen.
+TEST(Gain, UnseenHullStandsForMissingSurface) {
+  TriangleMesh mesh = gain_test::square(8);
+  const int base = int(mesh.vertices.size());
+  for (int j = 0; j <= 8; ++j)
+    for (int i = 0; i <= 8; ++i) mesh.vertices.push_back(Vec3(-1 + 2.0 * i / 8, -1, 2.0 * j / 8));
+  for (int j = 0; j < 8; ++j)
+    for (int i = 0; i < 8; ++i) {
+      const int a = base + j * 9 + i;  // normal -y
+      mesh.faces.push_back({a, a + 1, a + 9 + 1});
+      mesh.faces.push_back({a, a + 9 + 1, a + 9});
+    }
+  const RayCaster caster(mesh);
+  const std::vector<float> pri(mesh.num_faces(), gain_test::kNaN);
+  const std::vector<PinholeCamera> existing = {gain_test::looking(Vec3(0, -6, 1), Vec3(0, 0, 0.5))};
+  GainOptions o;
+  o.clusters = 0;
+  const GainEvaluator with(mesh, caster, pri, existing, o);
+  o.explore_hull = false;
+  const GainEvaluator without(mesh, caster, pri, existing, o);
+  EXPECT_EQ(without.num_hull_points(), 0u);
+  ASSERT_GT(with.num_hull_points(), 0u);
+  EXPECT_EQ(with.num_clusters(), mesh.num_faces() + with.num_hull_points());
+  auto hull_gain = [&](const PinholeCamera& c) {
+    double sum = 0;
+    for (const auto& [k, g] : with.cluster_gains(c))
+      if (with.cluster_faces(std::size_t(k)).empty()) sum += g;
+    return sum;
+  };
+  EXPECT_GT(hull_gain(gain_test::looking(Vec3(0, 6, 4), Vec3(0, 0, 0.5))), 0.0);
+  // From the side already seen, the hull is the wall itself or faces away.
+  EXPECT_EQ(hull_gain(gain_test::looking(Vec3(0.5, -6, 2.5), Vec3(0, 0, 0.5))), 0.0);
+}
+
+// Random points: every point lies inside or on the plane of every hull
+// triangle, the triangles close up (each edge met once in each direction),
+// V - E + F = 2, and points on a sphere around an interior cloud are
+// exactly the hull's vertices.
+TEST(Hull, RandomCloudIsClosedConvexAndHasTheSphereAsVertices) {
+  std::mt19937 rng(7);
+  std::normal_distribution<double> g(0.0, 1.0);
+  std::uniform_real_distribution<double> u(-0.5, 0.5);
+  std::vector<Vec3> points;
+  std::vector<Vec3> sphere;
+  for (int i = 0; i < 200; ++i) {
+    const Vec3 s = Vec3(g(rng), g(rng), g(rng)).normalized() * 2.0;
+    sphere.push_back(s);
+    points.push_back(s);
+    points.push_back(Vec3(u(rng), u(rng), u(rng)));  // inside
+  }
+  const std::vector<HullTriangle> hull = convex_hull_triangles(points);
+  ASSERT_FALSE(hull.empty());
+  std::map<std::pair<std::array<double, 3>, std::array<double, 3>>, int> edges;
+  std::set<std::array<double, 3>> vertices;
+  const auto key = [](const Vec3& v) { return std::array<double, 3>{v.x(), v.y(), v.z()}; };
+  for (const HullTriangle& t : hull) {
+    const Vec3 n = (t[1] - t[0]).cross(t[2] - t[0]).normalized();
+    for (const Vec3& p : points) EXPECT_LE(n.dot(p - t[0]), 1e-9);
+    for (int k = 0; k < 3; ++k) {
+      ++edges[{key(t[k]), key(t[(k + 1) % 3])}];
+      vertices.insert(key(t[k]));
+    }
+  }
+  for (const auto& [e, count] : edges) {
+    EXPECT_EQ(count, 1);
+    EXPECT_EQ(edges.count({e.second, e.first}), 1u) << "an open edge";
+  }
+  const long V = long(vertices.size()), E = long(edges.size()) / 2, F = long(hull.size());
+  EXPECT_EQ(V - E + F, 2);
+  EXPECT_EQ(vertices.size(), sphere.size());
+  for (const Vec3& s : sphere) EXPECT_EQ(vertices.count(key(s)), 1u);
 }

@@ -12,6 +12,7 @@
 
 #include "meshnbv/enum_names.h"
 #include "meshnbv/error.h"
+#include "meshnbv/hull.h"
 #include "meshnbv/pri.h"
 
 namespace meshnbv {
@@ -175,7 +176,7 @@ GainEvaluator::GainEvaluator(const TriangleMesh& mesh, const RayCaster& caster, 
       centroid += af * mesh.face_centroid(std::size_t(f));
       normal += af * normals[std::size_t(f)];
       a += af;
-      (explore[std::size_t(f)] ? k.weight_explore : k.weight_refine) += af * weight_[std::size_t(f)] / total_area;
+      (explore[std::size_t(f)] ? k.weight_explore : k.weight_refine) += af * weight_[std::size_t(f)];
     }
     centroid = a > 0 ? Vec3(centroid / a) : mesh.face_centroid(std::size_t(k.faces[0]));
     int nearest = k.faces[0];
@@ -214,6 +215,101 @@ GainEvaluator::GainEvaluator(const TriangleMesh& mesh, const RayCaster& caster, 
       k.rays.push_back(ray);
     }
   }
+  double unknown_area = 0;
+  if (options.explore_hull) unknown_area = add_hull_proxy(existing, total_area);
+  // Weights as shares of the surface: the mesh's area and the unknown part
+  // of the hull's.
+  const double scale = 1.0 / (total_area + unknown_area);
+  for (Cluster& k : clusters_) k.weight_refine *= scale, k.weight_explore *= scale;
+}
+
+double GainEvaluator::add_hull_proxy(const std::vector<PinholeCamera>& existing, double mesh_area) {
+  // The mesh's vertices without the farthest 1% from their per-axis median
+  // (stray faces of a sparse reconstruction would inflate the hull).
+  std::vector<char> used(mesh_.num_vertices(), 0);
+  for (const Face& f : mesh_.faces)
+    for (int k = 0; k < 3; ++k) used[std::size_t(f[k])] = 1;
+  std::vector<Vec3> points;
+  for (std::size_t v = 0; v < used.size(); ++v)
+    if (used[v]) points.push_back(mesh_.vertices[v]);
+  if (points.size() < 4) return 0;
+  Vec3 centre;
+  for (int a = 0; a < 3; ++a) {
+    std::vector<double> x(points.size());
+    for (std::size_t i = 0; i < points.size(); ++i) x[i] = points[i][a];
+    std::nth_element(x.begin(), x.begin() + std::ptrdiff_t(x.size() / 2), x.end());
+    centre[a] = x[x.size() / 2];
+  }
+  std::vector<double> d(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) d[i] = (points[i] - centre).norm();
+  std::vector<double> sorted = d;
+  const std::size_t q = std::min(sorted.size() - 1, std::size_t(0.99 * double(sorted.size())));
+  std::nth_element(sorted.begin(), sorted.begin() + std::ptrdiff_t(q), sorted.end());
+  const double limit = sorted[q];
+  std::vector<Vec3> kept;
+  for (std::size_t i = 0; i < points.size(); ++i)
+    if (d[i] <= limit) kept.push_back(points[i]);
+  const std::vector<HullTriangle> hull = convex_hull_triangles(kept);
+  if (hull.empty()) return 0;
+
+  // Points on the hull, about half as many as the mesh has clusters, each
+  // the centroid of a sub-triangle of its hull face.
+  double hull_area = 0;
+  for (const HullTriangle& t : hull) hull_area += 0.5 * (t[1] - t[0]).cross(t[2] - t[0]).norm();
+  const std::size_t wanted = std::clamp<std::size_t>(clusters_.size() / 2, 64, 100000);
+  const double cell = hull_area / double(wanted);
+  const double spacing = std::sqrt(cell);
+  struct Sample {
+    Vec3 point, normal;
+    double area;
+  };
+  std::vector<Sample> samples;
+  for (const HullTriangle& t : hull) {
+    const Vec3 cross = (t[1] - t[0]).cross(t[2] - t[0]);
+    const double area = 0.5 * cross.norm();
+    if (!(area > 0)) continue;
+    const Vec3 normal = cross.normalized();
+    const int n = std::max(1, int(std::ceil(std::sqrt(area / cell))));
+    const double sub = area / (double(n) * n);
+    auto at = [&](double u, double v) { return Vec3(t[0] + (u / n) * (t[1] - t[0]) + (v / n) * (t[2] - t[0])); };
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; i + j < n; ++j) {
+        samples.push_back({at(i + 1.0 / 3, j + 1.0 / 3), normal, sub});
+        if (i + j < n - 1) samples.push_back({at(i + 2.0 / 3, j + 2.0 / 3), normal, sub});
+      }
+  }
+  // Unknown: farther from the mesh than the spacing (where the hull lies
+  // on the mesh, the mesh speaks for itself) and seen by no existing view.
+  std::vector<char> unknown(samples.size(), 0);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, samples.size()), [&](const auto& r) {
+    for (std::size_t i = r.begin(); i < r.end(); ++i) {
+      if (caster_.closest_point(samples[i].point) < spacing) continue;
+      Cluster probe;
+      probe.point = samples[i].point;
+      probe.normal = samples[i].normal;
+      bool seen = false;
+      Ray ray;
+      for (const PinholeCamera& cam : existing)
+        if (view_ray(probe, cam, true, &ray)) {
+          seen = true;
+          break;
+        }
+      unknown[i] = !seen;
+    }
+  });
+  double unknown_area = 0;
+  for (std::size_t i = 0; i < samples.size(); ++i) {
+    if (!unknown[i]) continue;
+    Cluster k;
+    k.point = samples[i].point;
+    k.normal = samples[i].normal;
+    k.weight_explore = samples[i].area * options_.exploration_weight;
+    clusters_.push_back(std::move(k));
+    unknown_area += samples[i].area;
+    ++num_proxy_;
+  }
+  (void)mesh_area;
+  return unknown_area;
 }
 
 bool GainEvaluator::view_ray(const Cluster& c, const PinholeCamera& camera, bool check_occlusion,

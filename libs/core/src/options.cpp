@@ -329,6 +329,16 @@ const OptionTable<SuggestOptions>& suggest_option_table() {
           "(0 = every face on its own: exact, slower)",
           closed(0, 10000000), [](const O& o) { return std::int64_t(o.gain.clusters); },
           [](O& o, std::int64_t x) { o.gain.clusters = clamp_to_int(x); }),
+      [] {
+        OptionSpec<O> s{"explore_hull", OptionType::Bool, "Explore the hull",
+                        "reconstructability: the part of the mesh's convex hull that no view sees, "
+                        "away from the mesh, stands for surface not yet reconstructed and weighs as "
+                        "exploration",
+                        {}, {}, {}, {}};
+        s.get = [](const O& o) { return OptionValue(o.gain.explore_hull); };
+        s.set = [](O& o, const OptionValue& v) { o.gain.explore_hull = as_bool("explore_hull", v); };
+        return s;
+      }(),
       weight("weight_occlusion", "Weight occlusion (m1)", "occlusion", 0),
       weight("weight_focus", "Weight focus (m2)", "focus", 1),
       weight("weight_parallax", "Weight parallax (m3)", "parallax", 2),

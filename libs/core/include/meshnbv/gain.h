@@ -32,6 +32,14 @@
 // runs of a Morton curve split by the dominant axis of the normal), each at
 // the centroid of its face nearest the cluster's centroid, with the
 // cluster's area-weighted mean normal.
+//
+// Surface not yet reconstructed is not in the mesh, so no view could gain
+// by seeing it. With explore_hull, the mesh's convex hull (its vertices
+// without the farthest 1% from their median) stands for it: points
+// spread over the hull, about half as many as the clusters, farther from
+// the mesh than their spacing and seen by no existing view, join the
+// clusters (without faces) with exploration_weight, and A becomes the
+// mesh's area plus theirs.
 #pragma once
 
 #include <atomic>
@@ -53,10 +61,11 @@ EnergyKind parse_energy_kind(const std::string& name);  // paper | reconstructab
 std::string energy_kind_name(EnergyKind kind);
 
 struct GainOptions {
-  double target = 3.0;             // T, the reconstructability a face needs
+  double target = 1.0;             // T, the reconstructability a face needs (tuned: bench/eval/tune_gain.sh)
   double exploration_weight = 1.0; // weight of unobserved and boundary faces
   int clusters = 2048;             // clusters scored per candidate; 0 = one per face
   double max_incidence = 85.0;     // degrees; a view at more than this does not count (Smith)
+  bool explore_hull = true;        // the unseen part of the convex hull stands for missing surface
   VisibilityOptions visibility;    // the occlusion test's (suggest: the energy's)
 };
 
@@ -93,6 +102,9 @@ class GainEvaluator {
   std::size_t num_clusters() const { return clusters_.size(); }
   const std::vector<int>& cluster_faces(std::size_t c) const { return clusters_[c].faces; }
   double max_distance() const { return d_max_; }
+  // Points of the convex hull standing for surface not yet reconstructed
+  // (explore_hull), scored as clusters without faces.
+  std::size_t num_hull_points() const { return num_proxy_; }
   std::size_t evaluations() const { return evaluations_.load(std::memory_order_relaxed); }
 
  private:
@@ -112,6 +124,8 @@ class GainEvaluator {
   // (projection, facing, incidence, distance, occlusion); false otherwise.
   bool view_ray(const Cluster& c, const PinholeCamera& camera, bool check_occlusion, Ray* ray) const;
   double delta(const Cluster& c, const Ray& r) const;
+  // Adds the hull's unknown points as clusters; returns their area.
+  double add_hull_proxy(const std::vector<PinholeCamera>& existing, double mesh_area);
   double weighted_gain(const Cluster& c, double dh) const;
 
   const TriangleMesh& mesh_;
@@ -121,6 +135,7 @@ class GainEvaluator {
   std::vector<float> weight_;
   std::vector<Cluster> clusters_;
   std::vector<int> cluster_of_face_;
+  std::size_t num_proxy_ = 0;
   mutable std::atomic<std::size_t> evaluations_{0};
 };
 
