@@ -216,14 +216,14 @@ GainEvaluator::GainEvaluator(const TriangleMesh& mesh, const RayCaster& caster, 
     }
   }
   double unknown_area = 0;
-  if (options.explore_hull) unknown_area = add_hull_proxy(existing, total_area);
+  if (options.explore_hull) unknown_area = add_hull_proxy(existing);
   // Weights as shares of the surface: the mesh's area and the unknown part
   // of the hull's.
   const double scale = 1.0 / (total_area + unknown_area);
   for (Cluster& k : clusters_) k.weight_refine *= scale, k.weight_explore *= scale;
 }
 
-double GainEvaluator::add_hull_proxy(const std::vector<PinholeCamera>& existing, double mesh_area) {
+double GainEvaluator::add_hull_proxy(const std::vector<PinholeCamera>& existing) {
   // The mesh's vertices without the farthest 1% from their per-axis median
   // (stray faces of a sparse reconstruction would inflate the hull).
   std::vector<char> used(mesh_.num_vertices(), 0);
@@ -308,7 +308,6 @@ double GainEvaluator::add_hull_proxy(const std::vector<PinholeCamera>& existing,
     unknown_area += samples[i].area;
     ++num_proxy_;
   }
-  (void)mesh_area;
   return unknown_area;
 }
 

@@ -85,6 +85,7 @@ std::vector<HullTriangle> convex_hull_triangles(const std::vector<Vec3>& points)
   }
   std::vector<std::size_t> visible;
   std::unordered_map<std::uint64_t, char> edges;
+  std::size_t dead = 0;  // faces marked dead since the last compaction
   for (std::size_t i = 0; i < points.size(); ++i) {
     if (i == t[0] || i == t[1] || i == t[2] || i == t[3]) continue;
     const Vec3& q = points[i];
@@ -106,11 +107,12 @@ std::vector<HullTriangle> convex_hull_triangles(const std::vector<Vec3>& points)
     }
     for (const auto& [a, b] : horizon) faces.push_back(make_face(points, a, b, std::uint32_t(i)));
     // Drop dead faces now and then, so that the scans stay short.
-    if (faces.size() > 64 && 2 * std::size_t(std::count_if(faces.begin(), faces.end(),
-                                                           [](const HullFace& f) { return !f.alive; })) >
-                                 faces.size())
+    dead += visible.size();
+    if (faces.size() > 64 && 2 * dead > faces.size()) {
       faces.erase(std::remove_if(faces.begin(), faces.end(), [](const HullFace& f) { return !f.alive; }),
                   faces.end());
+      dead = 0;
+    }
   }
   for (const HullFace& f : faces)
     if (f.alive) out.push_back({points[f.v[0]], points[f.v[1]], points[f.v[2]]});

@@ -263,7 +263,8 @@ double row_spacing(const Vec2 p[3], double r) {
 // (over every view that may see it) and above with the least; a first
 // pass on the upper bound settles most views at 1 after a few faces.
 std::vector<int> view_reductions(const Scene& scene, const PriOptions& o, const std::vector<std::size_t>& image_views,
-                                 const std::vector<PinholeCamera>& cams, const std::vector<Vec3>& centres) {
+                                 const std::vector<PinholeCamera>& cams, const std::vector<Vec3>& centres,
+                                 const std::vector<Vec3>& normals) {
   std::vector<int> out(cams.size(), 1);
   if (o.max_image_reduction <= 1) return out;
   std::vector<std::size_t> candidates;  // views with a JPEG file
@@ -273,7 +274,6 @@ std::vector<int> view_reductions(const Scene& scene, const PriOptions& o, const 
   }
   if (candidates.empty()) return out;
   const TriangleMesh& mesh = scene.mesh;
-  const std::vector<Vec3> normals = mesh.face_normals();
   const double min_cosine = std::cos(o.max_incidence_angle * M_PI / 180.0);
   const std::size_t F = mesh.num_faces();
   const bool offset = o.measure == Measure::Offset;
@@ -513,11 +513,11 @@ PriViewSelection select_pri_views(const Scene& scene, const PriOptions& options,
     centres.push_back(s.cameras.back().center());
   }
   s.options_key = pri_options_key(options);
-  {
-    const int threads = options.threads > 0 ? options.threads : tbb::this_task_arena::max_concurrency();
-    tbb::task_arena arena(threads);
-    arena.execute([&] { s.reductions = view_reductions(scene, options, s.image_views, s.cameras, centres); });
-  }
+  const int threads = options.threads > 0 ? options.threads : tbb::this_task_arena::max_concurrency();
+  tbb::task_arena arena(threads);
+  const std::vector<Vec3> normals = mesh.face_normals();
+  arena.execute(
+      [&] { s.reductions = view_reductions(scene, options, s.image_views, s.cameras, centres, normals); });
   if (views_only) return s;
   const std::size_t F = mesh.num_faces();
   for (std::size_t j = 0; j < faces.size(); ++j)
@@ -526,8 +526,6 @@ PriViewSelection select_pri_views(const Scene& scene, const PriOptions& options,
   s.face_ids = faces;
   const std::size_t n = faces.empty() ? F : faces.size();
   s.faces.resize(n);
-  const int threads = options.threads > 0 ? options.threads : tbb::this_task_arena::max_concurrency();
-  tbb::task_arena arena(threads);
   arena.execute([&] {
     std::unique_ptr<RayCaster> own;
     if (!caster) own = std::make_unique<RayCaster>(mesh);
@@ -553,7 +551,6 @@ PriViewSelection select_pri_views(const Scene& scene, const PriOptions& options,
         }
       vis = VertexVisibility(mesh, rc, cams, options.visibility, progress, vertices);
     }
-    const std::vector<Vec3> normals = mesh.face_normals();
     const double abs_eps = options.visibility.absolute_eps_of_diagonal * mesh.bounding_box().diagonal();
     // Chunks of faces in parallel; progress and cancellation between chunks.
     constexpr std::size_t kChunk = 16384;

@@ -125,7 +125,7 @@ class GainEvaluator {
   bool view_ray(const Cluster& c, const PinholeCamera& camera, bool check_occlusion, Ray* ray) const;
   double delta(const Cluster& c, const Ray& r) const;
   // Adds the hull's unknown points as clusters; returns their area.
-  double add_hull_proxy(const std::vector<PinholeCamera>& existing, double mesh_area);
+  double add_hull_proxy(const std::vector<PinholeCamera>& existing);
   double weighted_gain(const Cluster& c, double dh) const;
 
   const TriangleMesh& mesh_;
