@@ -5,6 +5,8 @@
 // surface faces it (convex shapes: nothing else occludes).
 #include <gtest/gtest.h>
 
+#include <tbb/global_control.h>
+
 #include <cmath>
 
 #include "meshnbv/error.h"
@@ -206,6 +208,52 @@ TEST(EvalMesher, TooFewOrFlatPointsGiveAnEmptyMesh) {
   const auto r = mesh_from_visibility(single, centres);
   EXPECT_TRUE(r.mesh.empty());
   EXPECT_EQ(r.points, 0u);
+}
+
+// The rays are traced in parallel and counted (integers): any thread count
+// gives the same surface, vertex for vertex; and the graph cut's labelling
+// (the cells reachable from the source) matches the count of its parts.
+TEST(EvalMesher, ThreadCountDoesNotChangeTheSurface) {
+  const std::vector<Vec3> pts = fibonacci_sphere(3000, 1.0);
+  std::vector<Vec3> noisy;
+  for (std::size_t i = 0; i < pts.size(); ++i) noisy.push_back(pts[i] * (1.0 + 0.01 * std::sin(37.0 * double(i))));
+  const std::vector<Vec3> centres = fibonacci_sphere(20, 4.0);
+  const std::vector<SparsePoint> obs = observe(noisy, pts, centres);
+  VisibilityMesherResult one, two;
+  {
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
+    one = mesh_from_visibility(obs, centres);
+  }
+  {
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 2);
+    two = mesh_from_visibility(obs, centres);
+  }
+  ASSERT_FALSE(one.mesh.empty());
+  EXPECT_EQ(one.rays, two.rays);
+  EXPECT_EQ(one.free_tetrahedra, two.free_tetrahedra);
+  EXPECT_EQ(one.occupied_tetrahedra, two.occupied_tetrahedra);
+  EXPECT_EQ(one.free_tetrahedra + one.occupied_tetrahedra, one.tetrahedra);
+  ASSERT_EQ(one.mesh.vertices, two.mesh.vertices);
+  ASSERT_EQ(one.mesh.faces, two.mesh.faces);
+  EXPECT_TRUE(check_mesh(one.mesh).closed());
+  EXPECT_GT(one.seconds, 0.0);
+  EXPECT_LE(one.seconds_delaunay + one.seconds_visibility + one.seconds_labelling, one.seconds);
+}
+
+// A point given twice (as a fused point and a sparse one may be) shares
+// one vertex, and the views of both reach it.
+TEST(EvalMesher, RepeatedPointsShareAVertex) {
+  const std::vector<Vec3> pts = fibonacci_sphere(800, 1.0);
+  const std::vector<Vec3> centres = fibonacci_sphere(20, 4.0);
+  std::vector<SparsePoint> obs = observe(pts, pts, centres);
+  const VisibilityMesherResult once = mesh_from_visibility(obs, centres);
+  const std::size_t n = obs.size();
+  for (std::size_t i = 0; i < n; i += 2) obs.push_back(obs[i]);
+  const VisibilityMesherResult twice = mesh_from_visibility(obs, centres);
+  EXPECT_EQ(twice.points, 800u);
+  EXPECT_EQ(twice.mesh.num_vertices(), once.mesh.num_vertices());
+  EXPECT_EQ(twice.mesh.num_faces(), once.mesh.num_faces());
+  EXPECT_TRUE(check_mesh(twice.mesh).closed());
 }
 
 TEST(EvalMesher, BadCameraIndexIsAnError) {

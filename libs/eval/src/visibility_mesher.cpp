@@ -6,8 +6,13 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <numeric>
 #include <unordered_map>
+
+#include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
 
 // Boost.Graph trips GCC 12's flow analysis at the point of inlining, where
 // a push/pop around the includes does not reach.
@@ -21,7 +26,7 @@
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Triangulation_cell_base_with_info_3.h>
 #include <CGAL/Triangulation_vertex_base_with_info_3.h>
-#include <boost/graph/adjacency_list.hpp>
+#include <boost/graph/compressed_sparse_row_graph.hpp>
 #include <boost/graph/boykov_kolmogorov_max_flow.hpp>
 #pragma GCC diagnostic pop
 
@@ -99,60 +104,80 @@ struct Weights {
       : source(cells, 0.0), sink(cells, 0.0), facet(4 * cells, 0.0), votes(cells, 0) {}
 };
 
-// The labelling by s-t minimum cut: true = free (source side).
+// The labelling by s-t minimum cut: true = free (source side), the cells
+// reachable from the source in the residual graph (the same set for every
+// maximum flow). Boost's Boykov-Kolmogorov max-flow on a compressed sparse
+// row graph, built in two passes over the arcs (count, then place).
 std::vector<char> label_by_graph_cut(const Delaunay& dt, const std::vector<CellHandle>& cells,
                                      const Weights& w, double surface_cost) {
-  using Traits = boost::adjacency_list_traits<boost::vecS, boost::vecS, boost::directedS>;
-  using Graph = boost::adjacency_list<
-      boost::vecS, boost::vecS, boost::directedS,
-      boost::property<boost::vertex_color_t, boost::default_color_type,
-                      boost::property<boost::vertex_distance_t, long,
-                                      boost::property<boost::vertex_predecessor_t,
-                                                      Traits::edge_descriptor>>>,
-      boost::property<boost::edge_capacity_t, double,
-                      boost::property<boost::edge_residual_capacity_t, double,
-                                      boost::property<boost::edge_reverse_t,
-                                                      Traits::edge_descriptor>>>>;
+  using Graph = boost::compressed_sparse_row_graph<boost::directedS, boost::no_property, boost::no_property,
+                                                   boost::no_property, std::uint32_t, std::size_t>;
+  using Edge = boost::graph_traits<Graph>::edge_descriptor;
   const std::size_t n = cells.size();
-  Graph g(n + 2);
-  const auto s = static_cast<Traits::vertex_descriptor>(n);
-  const auto t = static_cast<Traits::vertex_descriptor>(n + 1);
-  auto capacity = boost::get(boost::edge_capacity, g);
-  auto reverse = boost::get(boost::edge_reverse, g);
-  auto add_pair = [&](std::size_t u, std::size_t v, double uv, double vu) {
-    const auto e1 = boost::add_edge(u, v, g).first;
-    const auto e2 = boost::add_edge(v, u, g).first;
-    capacity[e1] = uv;
-    capacity[e2] = vu;
-    reverse[e1] = e2;
-    reverse[e2] = e1;
-  };
+  const auto s = std::uint32_t(n), t = std::uint32_t(n + 1);
   double total = 0;
   for (std::size_t c = 0; c < n; ++c) total += w.source[c] + w.sink[c];
   const double infinite = 10.0 * (total + 1.0);
-  for (std::size_t c = 0; c < n; ++c) {
-    const CellHandle ch = cells[c];
-    const bool inf = dt.is_infinite(ch);
-    const double src = inf ? infinite : w.source[c];
-    if (src > 0) add_pair(s, c, src, 0.0);
-    if (!inf && w.sink[c] > 0) add_pair(c, t, w.sink[c], 0.0);
-    for (int i = 0; i < 4; ++i) {
-      const CellHandle nb = ch->neighbor(i);
-      const auto m = static_cast<std::size_t>(nb->info());
-      if (m < c) continue;  // each facet once
-      const int j = nb->index(ch);
-      const bool both_infinite = inf && dt.is_infinite(nb);
-      const double extra = both_infinite ? 0.0 : surface_cost;
-      const double cm = w.facet[4 * c + std::size_t(i)] + extra;
-      const double mc = w.facet[4 * m + std::size_t(j)] + extra;
-      if (cm > 0 || mc > 0) add_pair(c, m, cm, mc);
+  // Every arc pair (u -> v with capacity uv, v -> u with vu), in one order.
+  auto for_each_pair = [&](auto&& pair) {
+    for (std::size_t c = 0; c < n; ++c) {
+      const CellHandle ch = cells[c];
+      const bool inf = dt.is_infinite(ch);
+      const double src = inf ? infinite : w.source[c];
+      const auto cu = std::uint32_t(c);
+      if (src > 0) pair(s, cu, src, 0.0);
+      if (!inf && w.sink[c] > 0) pair(cu, t, w.sink[c], 0.0);
+      for (int i = 0; i < 4; ++i) {
+        const CellHandle nb = ch->neighbor(i);
+        const auto m = static_cast<std::size_t>(nb->info());
+        if (m < c) continue;  // each facet once
+        const int j = nb->index(ch);
+        const double extra = inf && dt.is_infinite(nb) ? 0.0 : surface_cost;
+        const double cm = w.facet[4 * c + std::size_t(i)] + extra;
+        const double mc = w.facet[4 * m + std::size_t(j)] + extra;
+        if (cm > 0 || mc > 0) pair(cu, std::uint32_t(m), cm, mc);
+      }
     }
-  }
-  boost::boykov_kolmogorov_max_flow(g, s, t);
-  auto color = boost::get(boost::vertex_color, g);
+  };
+  std::vector<std::size_t> start(n + 3, 0);
+  for_each_pair([&](std::uint32_t u, std::uint32_t v, double, double) {
+    ++start[u + 1];
+    ++start[v + 1];
+  });
+  for (std::size_t k = 1; k < start.size(); ++k) start[k] += start[k - 1];
+  const std::size_t arcs = start[n + 2];
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> ends(arcs);
+  std::vector<double> capacity(arcs), residual(arcs);
+  std::vector<std::size_t> reverse_index(arcs);
+  std::vector<std::size_t> next(start.begin(), start.end() - 1);
+  for_each_pair([&](std::uint32_t u, std::uint32_t v, double uv, double vu) {
+    const std::size_t e1 = next[u]++, e2 = next[v]++;
+    ends[e1] = {u, v};
+    ends[e2] = {v, u};
+    capacity[e1] = uv;
+    capacity[e2] = vu;
+    reverse_index[e1] = e2;
+    reverse_index[e2] = e1;
+  });
+  Graph g(boost::edges_are_sorted, ends.begin(), ends.end(), std::uint32_t(n + 2), arcs);
+  std::vector<Edge> reverse(arcs);
+  for (std::size_t e = 0; e < arcs; ++e) reverse[e] = Edge(ends[reverse_index[e]].first, reverse_index[e]);
+  std::vector<std::pair<std::uint32_t, std::uint32_t>>().swap(ends);
+  std::vector<std::size_t>().swap(reverse_index);
+  const auto edge_index = boost::get(boost::edge_index, g);
+  const auto vertex_index = boost::get(boost::vertex_index, g);
+  std::vector<Edge> predecessor(n + 2);
+  std::vector<boost::default_color_type> color(n + 2);
+  std::vector<std::uint32_t> distance(n + 2);
+  boost::boykov_kolmogorov_max_flow(
+      g, boost::make_iterator_property_map(capacity.begin(), edge_index),
+      boost::make_iterator_property_map(residual.begin(), edge_index),
+      boost::make_iterator_property_map(reverse.begin(), edge_index),
+      boost::make_iterator_property_map(predecessor.begin(), vertex_index),
+      boost::make_iterator_property_map(color.begin(), vertex_index),
+      boost::make_iterator_property_map(distance.begin(), vertex_index), vertex_index, s, t);
   std::vector<char> free(n, 0);
-  const auto source_colour = boost::get(color, s);
-  for (std::size_t c = 0; c < n; ++c) free[c] = boost::get(color, c) == source_colour ? 1 : 0;
+  for (std::size_t c = 0; c < n; ++c) free[c] = color[c] == color[s] ? 1 : 0;
   return free;
 }
 
@@ -246,16 +271,21 @@ struct Triangulation {
   Delaunay dt;
   std::vector<VertexHandle> handle;
 
+  // Inserted in one spatially sorted range (CGAL's Hilbert sort), the
+  // fastest way in; the triangulation does not depend on the order (CGAL's
+  // symbolic perturbation), only its internal numbering does. A point equal
+  // to an earlier one shares its vertex.
   void build(const std::vector<SparsePoint>& points, const std::vector<char>& usable) {
     dt.clear();
     handle.assign(points.size(), VertexHandle());
-    CellHandle hint;
-    for (std::size_t i = 0; i < points.size(); ++i) {
-      if (!usable[i]) continue;
-      const Point q = to_cgal(points[i].position);
-      handle[i] = hint == CellHandle() ? dt.insert(q) : dt.insert(q, hint);
-      hint = handle[i]->cell();
-    }
+    std::vector<std::pair<Point, int>> in;
+    for (std::size_t i = 0; i < points.size(); ++i)
+      if (usable[i]) in.emplace_back(to_cgal(points[i].position), int(i));
+    dt.insert(in.begin(), in.end());
+    for (auto v = dt.finite_vertices_begin(); v != dt.finite_vertices_end(); ++v)
+      handle[std::size_t(v->info())] = v;
+    for (const auto& [q, i] : in)  // duplicates: the vertex already there
+      if (handle[std::size_t(i)] == VertexHandle()) handle[std::size_t(i)] = dt.insert(q);
   }
 };
 
@@ -264,20 +294,26 @@ struct Triangulation {
 // how many.
 std::size_t drop_isolated_points(const std::vector<SparsePoint>& points, const Triangulation& t,
                                  double max_isolation, std::vector<char>* usable) {
-  std::vector<double> isolation(points.size(), 0.0), all;
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    if (!(*usable)[i]) continue;
+  std::vector<double> isolation(points.size(), -1.0), all;
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, points.size(), 256), [&](const auto& range) {
     std::vector<VertexHandle> nb;
-    t.dt.finite_adjacent_vertices(t.handle[i], std::back_inserter(nb));
     std::vector<double> d;
-    for (const auto& u : nb) d.push_back((from_cgal(u->point()) - points[i].position).norm());
-    std::sort(d.begin(), d.end());
-    const std::size_t k = std::min<std::size_t>(3, d.size());
-    double sum = 0;
-    for (std::size_t j = 0; j < k; ++j) sum += d[j];
-    isolation[i] = k ? sum / double(k) : 0.0;
-    all.push_back(isolation[i]);
-  }
+    for (std::size_t i = range.begin(); i != range.end(); ++i) {
+      if (!(*usable)[i]) continue;
+      nb.clear();
+      d.clear();
+      t.dt.adjacent_vertices_threadsafe(t.handle[i], std::back_inserter(nb));  // no marks on the cells
+      for (const auto& u : nb)
+        if (!t.dt.is_infinite(u)) d.push_back((from_cgal(u->point()) - points[i].position).norm());
+      const std::size_t k = std::min<std::size_t>(3, d.size());
+      std::partial_sort(d.begin(), d.begin() + long(k), d.end());
+      double sum = 0;
+      for (std::size_t j = 0; j < k; ++j) sum += d[j];
+      isolation[i] = k ? sum / double(k) : 0.0;
+    }
+  });
+  for (std::size_t i = 0; i < points.size(); ++i)
+    if ((*usable)[i]) all.push_back(isolation[i]);
   if (all.empty()) return 0;
   std::nth_element(all.begin(), all.begin() + long(all.size() / 2), all.end());
   const double limit = max_isolation * all[all.size() / 2];
@@ -322,11 +358,33 @@ Numbering number_triangulation(const std::vector<SparsePoint>& points, Triangula
   return n;
 }
 
+// What the rays say, counted: per cell the rays ending just in front of a
+// point (source) or just behind it (sink) and the rays crossing it (votes),
+// and per facet slot (4c + i) the rays crossing it. Counts add up in any
+// order, so the rays can be traced by any number of threads with the same
+// result.
+struct RayCounts {
+  std::vector<std::uint32_t> source, sink, facet, votes;
+  std::size_t rays = 0, failed_rays = 0;
+  explicit RayCounts(std::size_t cells) : source(cells, 0), sink(cells, 0), facet(4 * cells, 0), votes(cells, 0) {}
+  void add(const RayCounts& o) {
+    auto sum = [](std::vector<std::uint32_t>& x, const std::vector<std::uint32_t>& y) {
+      for (std::size_t k = 0; k < x.size(); ++k) x[k] += y[k];
+    };
+    sum(source, o.source);
+    sum(sink, o.sink);
+    sum(facet, o.facet);
+    sum(votes, o.votes);
+    rays += o.rays;
+    failed_rays += o.failed_rays;
+  }
+};
+
 // The ray from point p (vertex v) to camera centre c: every crossed facet
 // should not be surface, the cells crossed are free, the cell just behind
-// the point is matter. Throws what CGAL throws on a degenerate walk.
-void trace_ray(const Delaunay& dt, const VertexHandle& v, const Vec3& p, const Vec3& c, double alpha,
-               Weights* w) {
+// the point is matter. Throws what CGAL throws on a degenerate walk. Reads
+// the triangulation only (CGAL's walks keep their state locally).
+void trace_ray(const Delaunay& dt, const VertexHandle& v, const Vec3& p, const Vec3& c, RayCounts* w) {
   // The walk starts just off the point: CGAL's traverser started at a
   // vertex on the convex hull may begin in any incident finite cell, even
   // when the segment leaves the hull at once.
@@ -343,8 +401,7 @@ void trace_ray(const Delaunay& dt, const VertexHandle& v, const Vec3& p, const V
       const CellHandle cell = it;
       const auto id = std::size_t(cell->info());
       int facet = -1;
-      if (previous != CellHandle() && cell->has_neighbor(previous, facet))
-        w->facet[4 * id + std::size_t(facet)] += alpha;
+      if (previous != CellHandle() && cell->has_neighbor(previous, facet)) ++w->facet[4 * id + std::size_t(facet)];
       if (dt.is_infinite(cell)) {
         left_hull = true;
         break;
@@ -352,34 +409,54 @@ void trace_ray(const Delaunay& dt, const VertexHandle& v, const Vec3& p, const V
       ++w->votes[id];
       previous = cell;
     }
-    if (!left_hull && previous != CellHandle()) w->source[std::size_t(previous->info())] += alpha;
+    if (!left_hull && previous != CellHandle()) ++w->source[std::size_t(previous->info())];
   }
   // Just behind the point: matter.
   const CellHandle back = dt.locate(to_cgal(p - eps * dir), v->cell());
-  if (!dt.is_infinite(back)) w->sink[std::size_t(back->info())] += alpha;
+  if (!dt.is_infinite(back)) ++w->sink[std::size_t(back->info())];
 }
 
 // Free facets and cells in front of each point, matter behind, from the
-// rays of every point to its cameras.
+// rays of every point to its cameras, traced in parallel (TBB, the
+// caller's arena) in 32 rounds with progress and cancellation between them;
+// each ray weighs `alpha`.
 Weights visibility_weights(const std::vector<SparsePoint>& points, const std::vector<Vec3>& centres,
                            const Triangulation& t, std::size_t cells, double alpha,
                            VisibilityMesherResult* result, const ProgressCallback& progress) {
-  Weights w(cells);
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    if (t.handle[i] == VertexHandle()) continue;
-    const Vec3 p = points[i].position;
-    for (int view : points[i].views) {
-      const Vec3 c = centres[std::size_t(view)];
-      if ((c - p).norm() <= 0) continue;
-      ++result->rays;
-      try {
-        trace_ray(t.dt, t.handle[i], p, c, alpha, &w);
-      } catch (const std::exception&) {
-        ++result->failed_rays;  // a degenerate configuration CGAL refused: skip the ray
+  tbb::enumerable_thread_specific<RayCounts> local([cells] { return RayCounts(cells); });
+  constexpr std::size_t kRounds = 32;
+  for (std::size_t round = 0; round < kRounds; ++round) {
+    const std::size_t begin = points.size() * round / kRounds, end = points.size() * (round + 1) / kRounds;
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(begin, end, 64), [&](const auto& range) {
+      RayCounts& w = local.local();
+      for (std::size_t i = range.begin(); i != range.end(); ++i) {
+        if (t.handle[i] == VertexHandle()) continue;
+        const Vec3 p = points[i].position;
+        for (int view : points[i].views) {
+          const Vec3 c = centres[std::size_t(view)];
+          if ((c - p).norm() <= 0) continue;
+          ++w.rays;
+          try {
+            trace_ray(t.dt, t.handle[i], p, c, &w);
+          } catch (const std::exception&) {
+            ++w.failed_rays;  // a degenerate configuration CGAL refused: skip the ray
+          }
+        }
       }
-    }
-    if (i % 256 == 0) report_progress(progress, 0.2 + 0.6 * double(i) / double(points.size()), "visibility");
+    });
+    report_progress(progress, 0.2 + 0.6 * double(round + 1) / double(kRounds), "visibility");
   }
+  RayCounts total(cells);
+  for (const RayCounts& w : local) total.add(w);
+  result->rays += total.rays;
+  result->failed_rays += total.failed_rays;
+  Weights w(cells);
+  for (std::size_t c = 0; c < cells; ++c) {
+    w.source[c] = alpha * double(total.source[c]);
+    w.sink[c] = alpha * double(total.sink[c]);
+    w.votes[c] = int(total.votes[c]);
+  }
+  for (std::size_t k = 0; k < w.facet.size(); ++k) w.facet[k] = alpha * double(total.facet[k]);
   return w;
 }
 
@@ -492,6 +569,13 @@ VisibilityMesherResult mesh_from_visibility(const std::vector<SparsePoint>& poin
     return result;
   };
 
+  auto lap = [last = start]() mutable {
+    const auto now = std::chrono::steady_clock::now();
+    const double s = std::chrono::duration<double>(now - last).count();
+    last = now;
+    return s;
+  };
+
   // 1. Delaunay triangulation of the usable points, without outliers.
   std::vector<char> usable = usable_points(points, centres, options);
   drop_far_points(points, options.max_spread, &usable, &result.outliers);
@@ -507,11 +591,14 @@ VisibilityMesherResult mesh_from_visibility(const std::vector<SparsePoint>& poin
   report_progress(progress, 0.2, "delaunay");
   const Numbering n = number_triangulation(points, &t);
   result.tetrahedra = t.dt.number_of_finite_cells();
+  result.seconds_delaunay = lap();
 
   // 2. Visibility, 3. labels, 4. the boundary.
   const Weights w = visibility_weights(points, centres, t, n.cells.size(), options.visibility_weight,
                                        &result, progress);
+  result.seconds_visibility = lap();
   const std::vector<char> free = label_cells(t.dt, n.cells, w, options);
+  result.seconds_labelling = lap();
   report_progress(progress, 0.9, "labelling");
   extract_surface(n, free, centres, options, &result);
   result.free_tetrahedra -= std::min(result.free_tetrahedra, n.cells.size() - result.tetrahedra);

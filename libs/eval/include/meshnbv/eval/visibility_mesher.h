@@ -77,7 +77,10 @@ struct VisibilityMesherResult {
   std::size_t tetrahedra = 0;    // finite cells
   std::size_t free_tetrahedra = 0, occupied_tetrahedra = 0;
   std::size_t rays = 0, failed_rays = 0;  // failed: degenerate traversal, skipped
-  double seconds = 0;
+  double seconds = 0;  // the whole call, of which:
+  double seconds_delaunay = 0;    // outliers, triangulation (twice when isolated points are dropped)
+  double seconds_visibility = 0;  // the rays' walks (parallel)
+  double seconds_labelling = 0;   // graph cut or vote
 };
 
 // `centres[i]` is the centre of camera i. Fewer than 4 usable points (or
