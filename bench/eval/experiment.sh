@@ -11,6 +11,7 @@
 #   SEEDS="1 2 3 4 5"      seeds of the random strategy
 #   ONLY="temple building" datasets (temple, building, fortress; default all three)
 #   RUNS='nbv|uniform'     only the runs whose name matches (bash regex)
+#   RESULTS=DIR            where the runs go (default below)
 #
 # Results (committed): bench/results/eval/experiment/<backend>/<dataset>/
 # <run>/{bootstraps.csv, bootstraps.json, console.txt,
@@ -26,7 +27,7 @@ BOOTSTRAPS=${BOOTSTRAPS:-5}
 SEEDS=${SEEDS:-1 2 3 4 5}
 ONLY=${ONLY:-temple building fortress}
 RUNS=${RUNS:-.*}
-RESULTS=$ROOT/bench/results/eval/experiment/$BACKEND
+RESULTS=${RESULTS:-$ROOT/bench/results/eval/experiment/$BACKEND}
 mkdir -p "$WORK" "$RESULTS"
 [ -x "$MESHNBV" ] || { echo "no $MESHNBV: build first" >&2; exit 1; }
 
@@ -57,6 +58,8 @@ strategies() {
   run "$dataset" nbv "$@" --strategy nbv
   run "$dataset" nbv_recon "$@" --strategy nbv --energy reconstructability
   run "$dataset" nbv_recon_nohull "$@" --strategy nbv --energy reconstructability --no-explore-hull
+  # With the matchability condition (match_angle 45 degrees).
+  run "$dataset" nbv_recon_m45 "$@" --strategy nbv --energy reconstructability --match-angle 45
 }
 
 for dataset in $ONLY; do
@@ -80,6 +83,9 @@ for dataset in $ONLY; do
       # New poses anywhere (rendered): the whole-mesh energy's sampled candidates.
       run "$dataset" nbv_recon_sampled "$DATA" --view-budget 12 --cache "$WORK/cache/$dataset" \
         --facet-support edges --strategy nbv --energy reconstructability --nbv-candidates sampled
+      run "$dataset" nbv_recon_sampled_m45 "$DATA" --view-budget 12 --cache "$WORK/cache/$dataset" \
+        --facet-support edges --strategy nbv --energy reconstructability --nbv-candidates sampled \
+        --match-angle 45
       ;;
     *) echo "unknown dataset '$dataset' (temple, building, fortress)" >&2; exit 2 ;;
   esac

@@ -153,6 +153,7 @@ meshnbv::SuggestOptions RawOptionsOf(vtkMeshNBVNextBestViewFilter* f)
   o.gain.exploration_weight = f->GetExplorationWeight();
   o.gain.clusters = f->GetGainClusters();
   o.gain.explore_hull = f->GetExploreHull() != 0;
+  o.gain.match_angle = f->GetMatchAngle();
   o.energy.weights = { f->GetWeightOcclusion(), f->GetWeightFocus(), f->GetWeightParallax(),
     f->GetWeightIncidence() };
   o.energy.penalty = f->GetPenalty();
@@ -208,6 +209,7 @@ vtkMeshNBVNextBestViewFilter::vtkMeshNBVNextBestViewFilter()
   this->ExplorationWeight = defaults.gain.exploration_weight;
   this->GainClusters = defaults.gain.clusters;
   this->ExploreHull = defaults.gain.explore_hull;
+  this->MatchAngle = defaults.gain.match_angle;
   this->WeightOcclusion = defaults.energy.weights[0];
   this->WeightFocus = defaults.energy.weights[1];
   this->WeightParallax = defaults.energy.weights[2];

@@ -136,6 +136,16 @@ public:
 
   ///@{
   /**
+   * RECONSTRUCTABILITY: a candidate improves surface that existing views
+   * see only where its ray is within this many degrees of one of theirs
+   * (`match_angle`, in (0, 180]; 180 = every pair counts).
+   */
+  vtkSetMacro(MatchAngle, double);
+  vtkGetMacro(MatchAngle, double);
+  ///@}
+
+  ///@{
+  /**
    * Energy weights m1..m4 of the occlusion, focus, parallax and incidence
    * terms (`weight_occlusion`, `weight_focus`, `weight_parallax`,
    * `weight_incidence`).
@@ -277,6 +287,7 @@ protected:
   double ExplorationWeight;
   int GainClusters;
   vtkTypeBool ExploreHull;
+  double MatchAngle;
   double WeightOcclusion;
   double WeightFocus;
   double WeightParallax;

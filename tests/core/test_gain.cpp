@@ -305,6 +305,18 @@ TEST(Gain, PlannerBatchesCoverTheMesh) {
   o.energy_kind = EnergyKind::Reconstructability;
   o.gain.clusters = 0;
   o.top = 2;
+  {
+    // With the matchability condition at 45 degrees, east and north see
+    // only faces nobody has seen and nothing that matches: no gain. Only
+    // the candidate beside the existing views is worth anything.
+    o.gain.match_angle = 45;
+    const SuggestResult gated = suggest_views(scene, pri, o, given);
+    ASSERT_EQ(gated.ranking.size(), 4u);
+    for (const auto& c : gated.ranking)
+      EXPECT_EQ(c.energy.total > 0, c.label == "same_side") << c.label << " " << c.energy.total;
+  }
+  // Smith et al.'s pairs alone: the batch goes round the cube.
+  o.gain.match_angle = 180;
   const SuggestResult r = suggest_views(scene, pri, o, given);
   ASSERT_EQ(r.suggestions.size(), 2u);
   EXPECT_NE(r.suggestions[0].source, "same_side");
@@ -371,6 +383,110 @@ TEST(Gain, UnseenHullStandsForMissingSurface) {
   EXPECT_GT(hull_gain(gain_test::looking(Vec3(0, 6, 4), Vec3(0, 0, 0.5))), 0.0);
   // From the side already seen, the hull is the wall itself or faces away.
   EXPECT_EQ(hull_gain(gain_test::looking(Vec3(0.5, -6, 2.5), Vec3(0, 0, 0.5))), 0.0);
+}
+
+// The matchability condition (gain.h): one view above the square, a
+// candidate whose rays are more than 50 degrees from its rays at every face.
+TEST(Gain, RaysBeyondTheMatchAngleGainNothing) {
+  const TriangleMesh mesh = gain_test::square(2);
+  const RayCaster caster(mesh);
+  const std::vector<float> pri(mesh.num_faces(), gain_test::kNaN);
+  const std::vector<PinholeCamera> existing = {gain_test::looking(Vec3(0, 0, 4), Vec3(0, 0, 0))};
+  const PinholeCamera far = gain_test::looking(Vec3(4 * std::sin(M_PI / 3), 0, 4 * std::cos(M_PI / 3)), Vec3(0, 0, 0));
+  const PinholeCamera near = gain_test::looking(Vec3(4 * std::sin(M_PI / 6), 0, 4 * std::cos(M_PI / 6)), Vec3(0, 0, 0));
+  GainOptions o;
+  o.clusters = 0;
+  EXPECT_EQ(o.match_angle, 180.0);  // the default: off
+  o.match_angle = 45;
+  const GainEvaluator gated(mesh, caster, pri, existing, o);
+  o.match_angle = 180;
+  const GainEvaluator smith(mesh, caster, pri, existing, o);
+  o.match_angle = 70;
+  const GainEvaluator wide(mesh, caster, pri, existing, o);
+  EXPECT_EQ(gated.evaluate(far).total, 0.0);
+  EXPECT_TRUE(gated.cluster_gains(far).empty());
+  EXPECT_GT(smith.evaluate(far).total, 0.0);
+  EXPECT_DOUBLE_EQ(wide.evaluate(far).total, smith.evaluate(far).total);
+  // Within the angle at every face (about 30 degrees): the same as without it.
+  EXPECT_GT(gated.evaluate(near).total, 0.0);
+  EXPECT_DOUBLE_EQ(gated.evaluate(near).total, smith.evaluate(near).total);
+  // The existing views' own reconstructability is not gated.
+  EXPECT_EQ(gated.face_reconstructability(), smith.face_reconstructability());
+}
+
+// A batch pick is a partner for later picks: alone, a view 80 degrees off
+// the existing one's direction matches nothing; after a pick at 60 degrees
+// (unmatched itself, so it adds nothing), its rays are 16-26 degrees from
+// the pick's.
+TEST(Gain, APickIsAPartnerForLaterPicks) {
+  const TriangleMesh mesh = gain_test::square(2);
+  const RayCaster caster(mesh);
+  const std::vector<float> pri(mesh.num_faces(), gain_test::kNaN);
+  GainOptions o;
+  o.clusters = 0;
+  o.match_angle = 45;
+  GainEvaluator gain(mesh, caster, pri, {gain_test::looking(Vec3(0, 0, 4), Vec3(0, 0, 0))}, o);
+  auto at = [](double deg) {
+    const double a = deg * M_PI / 180;
+    return gain_test::looking(Vec3(4 * std::sin(a), 0, 4 * std::cos(a)), Vec3(0, 0, 0));
+  };
+  EXPECT_EQ(gain.evaluate(at(80)).total, 0.0);
+  const std::vector<float> before = gain.face_reconstructability();
+  gain.add_view(at(60));
+  EXPECT_EQ(gain.face_reconstructability(), before);
+  EXPECT_GT(gain.evaluate(at(80)).total, 0.0);
+}
+
+// Surface no view sees: a candidate's first-view credit there is scaled by
+// the area share of what it sees that matches an existing view. Two equal
+// squares, A seen from above, B by nobody; the candidate sees both, A
+// within 12-24 degrees of the existing rays: a share of one half.
+TEST(Gain, UnseenSurfaceGainsByTheMatchedShare) {
+  TriangleMesh mesh = gain_test::square(2);  // A, moved to x in [-3, -1]
+  for (Vec3& v : mesh.vertices) v.x() -= 2;
+  const TriangleMesh b = gain_test::square(2);  // B, moved to x in [1, 3]
+  const int base = int(mesh.vertices.size());
+  for (const Vec3& v : b.vertices) mesh.vertices.push_back(v + Vec3(2, 0, 0));
+  for (const Face& f : b.faces) mesh.faces.push_back({f[0] + base, f[1] + base, f[2] + base});
+  const std::size_t half = b.num_faces();
+  const RayCaster caster(mesh);
+  const std::vector<float> pri(mesh.num_faces(), gain_test::kNaN);
+  // Half-fields of 32.6 x 25.6 degrees: from (-2, 0, 4) x reaches 0.56 at most.
+  const PinholeCamera e = gain_test::looking(Vec3(-2, 0, 4), Vec3(-2, 0, 0));
+  const PinholeCamera c = gain_test::looking(Vec3(0, 0, 6), Vec3(0, 0, 0));
+  GainOptions o;
+  o.clusters = 0;
+  o.explore_hull = false;
+  o.target = 100;
+  o.match_angle = 45;
+  const GainEvaluator gated(mesh, caster, pri, {e}, o);
+  o.match_angle = 180;
+  const GainEvaluator smith(mesh, caster, pri, {e}, o);
+  const std::vector<float> h = gated.face_reconstructability();
+  for (std::size_t f = 0; f < mesh.num_faces(); ++f) EXPECT_EQ(h[f] > 0, f < half) << f;
+  double dmax_half = 0;
+  for (std::size_t f = 0; f < half; ++f) dmax_half = std::max(dmax_half, (e.center() - mesh.face_centroid(f)).norm());
+  ASSERT_NEAR(gated.max_distance(), 2 * dmax_half, 1e-12);
+  std::map<int, double> g_gated, g_smith;
+  for (const auto& [k, g] : gated.cluster_gains(c)) g_gated[k] = g;
+  for (const auto& [k, g] : smith.cluster_gains(c)) g_smith[k] = g;
+  ASSERT_EQ(g_gated.size(), mesh.num_faces());
+  const double total_area = 8.0, gm = gain_test::g_max(), T = 100;
+  for (std::size_t f = 0; f < mesh.num_faces(); ++f) {
+    const int k = int(f);  // one cluster per face, in face order
+    if (f < half) {
+      EXPECT_DOUBLE_EQ(g_gated[k], g_smith[k]) << f;  // matched
+      continue;
+    }
+    const Vec3 p = mesh.face_centroid(f);
+    const double cos_theta = (c.center() - p).normalized().z();
+    const double s = 1 - (c.center() - p).norm() / gated.max_distance();
+    const double dh = 0.5 * (0.5 * gm * cos_theta * s);  // the share times the first-view credit
+    const double w = mesh.face_areas()[f] / total_area;  // exploration weight 1
+    const double expected = w * (T * T - (T - dh) * (T - dh)) / (T * T);
+    EXPECT_NEAR(g_gated[k], expected, 1e-4 * expected) << f;
+    EXPECT_LT(g_gated[k], 0.51 * g_smith[k]) << f;
+  }
 }
 
 // Random points: every point lies inside or on the plane of every hull

@@ -133,6 +133,7 @@ GainEvaluator::GainEvaluator(const TriangleMesh& mesh, const RayCaster& caster, 
     throw Error("PRI has " + std::to_string(pri.size()) + " values for " + std::to_string(F) + " faces");
   if (F == 0) throw Error("the mesh has no faces");
   cos_max_incidence_ = std::cos(options.max_incidence * M_PI / 180.0);
+  cos_match_ = options.match_angle >= 180 ? -2.0 : std::cos(options.match_angle * M_PI / 180.0);
   const double diagonal = mesh.bounding_box().diagonal();
   absolute_eps_ = options.visibility.absolute_eps_of_diagonal * diagonal;
 
@@ -173,6 +174,7 @@ GainEvaluator::GainEvaluator(const TriangleMesh& mesh, const RayCaster& caster, 
     for (int f : k.faces) {
       cluster_of_face_[std::size_t(f)] = int(c);
       const double af = area[std::size_t(f)];
+      k.area += af;
       centroid += af * mesh.face_centroid(std::size_t(f));
       normal += af * normals[std::size_t(f)];
       a += af;
@@ -303,6 +305,7 @@ double GainEvaluator::add_hull_proxy(const std::vector<PinholeCamera>& existing)
     Cluster k;
     k.point = samples[i].point;
     k.normal = samples[i].normal;
+    k.area = samples[i].area;
     k.weight_explore = samples[i].area * options_.exploration_weight;
     clusters_.push_back(std::move(k));
     unknown_area += samples[i].area;
@@ -331,7 +334,9 @@ bool GainEvaluator::view_ray(const Cluster& c, const PinholeCamera& camera, bool
   return true;
 }
 
-double GainEvaluator::delta(const Cluster& c, const Ray& r) const {
+double GainEvaluator::delta(const Cluster& c, const Ray& r) const { return matched_delta(c, r, 1.0, false); }
+
+double GainEvaluator::matched_delta(const Cluster& c, const Ray& r, double share, bool gate) const {
   const AngleTable& g = pair_table();
   double sum = 0, nearest = -1;  // cos of the smallest angle to an existing ray
   for (const Ray& v : c.rays) {
@@ -341,8 +346,29 @@ double GainEvaluator::delta(const Cluster& c, const Ray& r) const {
   }
   // The first-view credit: half an ideal pair, the best one over the views.
   sum += 0.5 * g.max() * std::max(0.0, r.cos_theta * r.scale - c.best_single);
+  if (c.rays.empty()) return gate ? share * sum : sum;
+  // Beyond the match angle of every existing ray, nothing is matched.
+  if (gate && nearest < cos_match_) return 0;
   // A ray within a few degrees of one already there repeats it.
-  return c.rays.empty() ? sum : novelty_table()(nearest) * sum;
+  return novelty_table()(nearest) * sum;
+}
+
+double GainEvaluator::matched_share(const PinholeCamera& candidate) const {
+  if (cos_match_ < -1) return 1;
+  const std::size_t stride = std::max<std::size_t>(1, (clusters_.size() + 255) / 256);
+  double seen = 0, matched = 0;
+  for (std::size_t c = 0; c < clusters_.size(); c += stride) {
+    const Cluster& k = clusters_[c];
+    Ray ray;
+    if (!view_ray(k, candidate, false, &ray)) continue;
+    seen += k.area;
+    for (const Ray& v : k.rays)
+      if (ray.direction.dot(v.direction) >= cos_match_) {
+        matched += k.area;
+        break;
+      }
+  }
+  return seen > 0 ? matched / seen : 0;
 }
 
 double GainEvaluator::weighted_gain(const Cluster& c, double dh) const {
@@ -351,20 +377,26 @@ double GainEvaluator::weighted_gain(const Cluster& c, double dh) const {
   return (c.weight_refine + c.weight_explore) * (before * before - after * after) / (T * T);
 }
 
-std::vector<std::pair<int, double>> GainEvaluator::cluster_gains(const PinholeCamera& candidate) const {
-  std::vector<std::pair<int, double>> out;
+template <class F>
+void GainEvaluator::for_each_gain(const PinholeCamera& candidate, F&& f) const {
+  const double share = matched_share(candidate);
   for (std::size_t c = 0; c < clusters_.size(); ++c) {
     const Cluster& k = clusters_[c];
     if (k.h >= options_.target || k.weight_refine + k.weight_explore <= 0) continue;
     Ray ray;
     if (!view_ray(k, candidate, false, &ray)) continue;
-    const double gain = weighted_gain(k, delta(k, ray));
+    const double gain = weighted_gain(k, matched_delta(k, ray, share, true));
     if (!(gain > 0)) continue;
     // The occlusion ray last: only for a cluster that would gain.
     if (!caster_.segment_clear(candidate.center(), k.point, options_.visibility.relative_eps, absolute_eps_))
       continue;
-    out.push_back({int(c), gain});
+    f(c, gain);
   }
+}
+
+std::vector<std::pair<int, double>> GainEvaluator::cluster_gains(const PinholeCamera& candidate) const {
+  std::vector<std::pair<int, double>> out;
+  for_each_gain(candidate, [&](std::size_t c, double gain) { out.push_back({int(c), gain}); });
   std::stable_sort(out.begin(), out.end(), [](const auto& a, const auto& b) { return a.second > b.second; });
   return out;
 }
@@ -373,19 +405,12 @@ EnergyTerms GainEvaluator::evaluate(const PinholeCamera& candidate) const {
   evaluations_.fetch_add(1, std::memory_order_relaxed);
   EnergyTerms t;
   t.whole_mesh = true;
-  for (std::size_t c = 0; c < clusters_.size(); ++c) {
+  for_each_gain(candidate, [&](std::size_t c, double gain) {
     const Cluster& k = clusters_[c];
-    if (k.h >= options_.target || k.weight_refine + k.weight_explore <= 0) continue;
-    Ray ray;
-    if (!view_ray(k, candidate, false, &ray)) continue;
-    const double gain = weighted_gain(k, delta(k, ray));
-    if (!(gain > 0)) continue;
-    if (!caster_.segment_clear(candidate.center(), k.point, options_.visibility.relative_eps, absolute_eps_))
-      continue;
     const double share = k.weight_refine / (k.weight_refine + k.weight_explore);
     t.refinement += gain * share;
     t.exploration += gain * (1 - share);
-  }
+  });
   t.total = t.refinement + t.exploration;
   return t;
 }
@@ -402,12 +427,13 @@ std::vector<int> GainEvaluator::improved_faces(const PinholeCamera& candidate, s
 }
 
 void GainEvaluator::add_view(const PinholeCamera& camera) {
+  const double share = matched_share(camera);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, clusters_.size()), [&](const auto& r) {
     for (std::size_t c = r.begin(); c < r.end(); ++c) {
       Cluster& k = clusters_[c];
       Ray ray;
       if (!view_ray(k, camera, true, &ray)) continue;
-      k.h += delta(k, ray);
+      k.h += matched_delta(k, ray, share, true);
       k.best_single = std::max(k.best_single, ray.cos_theta * ray.scale);
       k.rays.push_back(ray);
     }

@@ -339,6 +339,14 @@ const OptionTable<SuggestOptions>& suggest_option_table() {
         s.set = [](O& o, const OptionValue& v) { o.gain.explore_hull = as_bool("explore_hull", v); };
         return s;
       }(),
+      real_option<O>(
+          "match_angle", "Match angle",
+          "reconstructability: a candidate improves surface that existing views see only where its "
+          "ray is within this angle of one of theirs (features match only between nearby "
+          "directions); on surface no view sees yet, its gain is scaled by the share of what it "
+          "sees that matches. 180 = every pair counts, as in Smith et al.'s heuristic",
+          left_open(0, 180, "degrees"), [](const O& o) { return o.gain.match_angle; },
+          [](O& o, double x) { o.gain.match_angle = x; }),
       weight("weight_occlusion", "Weight occlusion (m1)", "occlusion", 0),
       weight("weight_focus", "Weight focus (m2)", "focus", 1),
       weight("weight_parallax", "Weight parallax (m3)", "parallax", 2),

@@ -20,6 +20,21 @@
 // an existing view as a new one (a twin of a view would gain almost what
 // the view did), while such a ray triangulates nothing new.
 //
+// A candidate must also be matchable (beyond Smith et al.; docs/nbv.md):
+// features match only between views of a point from nearby directions,
+// and a view whose rays are far from every existing view's gets no point
+// (issue #16: sampled poses above the synthetic building's roof, far from
+// the directions of all its ring photos, were picked and added almost
+// nothing, though their many weak pairs scored well). With
+// match_angle < 180, a candidate's increment at a cluster that existing
+// views see counts only where its ray is within match_angle of one of
+// theirs; at a cluster no view sees yet (the first-view credit alone), it
+// is multiplied by the candidate's matched share: the area share of the
+// surface it sees (projection, facing, distance; no occlusion test, on an
+// even subsample of at most 256 clusters) that an existing view sees
+// within match_angle of its ray. Batch picks count the same way. Off
+// (180) by default until the paired experiment decides (docs/nbv.md).
+//
 // A face's utility is -(max(T - h, 0))^2 (the target T = gain_target:
 // diminishing returns, nothing more once reached), its weight the quality
 // index's rank among the observed faces, in (0, 1] (the worst face 1), or
@@ -66,6 +81,7 @@ struct GainOptions {
   int clusters = 2048;             // clusters scored per candidate; 0 = one per face
   double max_incidence = 85.0;     // degrees; a view at more than this does not count (Smith)
   bool explore_hull = true;        // the unseen part of the convex hull stands for missing surface
+  double match_angle = 180.0;      // degrees; a ray farther than this from every existing one gains nothing (180 = off)
   VisibilityOptions visibility;    // the occlusion test's (suggest: the energy's)
 };
 
@@ -115,6 +131,7 @@ class GainEvaluator {
   struct Cluster {
     std::vector<int> faces;
     Vec3 point, normal;
+    double area = 0;  // of its faces (or its hull sample)
     double weight_refine = 0, weight_explore = 0;  // sum of area w / A
     std::vector<Ray> rays;                         // the views that see it
     double h = 0;                                  // pairs + first-view credit
@@ -124,6 +141,15 @@ class GainEvaluator {
   // (projection, facing, incidence, distance, occlusion); false otherwise.
   bool view_ray(const Cluster& c, const PinholeCamera& camera, bool check_occlusion, Ray* ray) const;
   double delta(const Cluster& c, const Ray& r) const;
+  // delta(), with `gate` under the matchability condition: 0 where c has
+  // rays and none is within match_angle of r; times `share` where c has
+  // none (cos_match_ < -1, match_angle 180: no condition).
+  double matched_delta(const Cluster& c, const Ray& r, double share, bool gate) const;
+  // The candidate's matched share (1 when match_angle >= 180).
+  double matched_share(const PinholeCamera& candidate) const;
+  // f(cluster index, weighted gain) for every cluster the candidate improves.
+  template <class F>
+  void for_each_gain(const PinholeCamera& candidate, F&& f) const;
   // Adds the hull's unknown points as clusters; returns their area.
   double add_hull_proxy(const std::vector<PinholeCamera>& existing);
   double weighted_gain(const Cluster& c, double dh) const;
@@ -131,7 +157,7 @@ class GainEvaluator {
   const TriangleMesh& mesh_;
   const RayCaster& caster_;
   GainOptions options_;
-  double cos_max_incidence_ = 0, d_max_ = 0, absolute_eps_ = 0;
+  double cos_max_incidence_ = 0, d_max_ = 0, absolute_eps_ = 0, cos_match_ = -1;
   std::vector<float> weight_;
   std::vector<Cluster> clusters_;
   std::vector<int> cluster_of_face_;
