@@ -9,7 +9,9 @@ Reads RESULTS_DIR/<dataset>/<run>/bootstraps.json and bootstrap_<b>/loop.json
 (`meshnbv loop --bootstraps B`); runs are named <strategy> or
 <strategy>_seed<N>. A random run per starting set is the mean over its
 seeds at each view count, so every strategy has one value per starting set
-and differences pair them. The primary metric is completeness at the
+and differences pair them. A run that changes one option of another
+(VARIANT_OF: nbv_recon_m45 of nbv_recon, ...) is also paired with that
+run, in a row of its own. The primary metric is completeness at the
 middle threshold (1.25 mm on templeRing, 1% of the diagonal on synthetic
 scenes); its area is the mean over the view counts from the bootstrap to
 the budget, in points. Baselines: uniform, random, coverage; the best is
@@ -45,6 +47,9 @@ LABELS = {"uniform": "Uniform", "random": "Random (mean of seeds)", "coverage": 
           "nbv_recon_m45": "NBV (whole-mesh, match angle 45°)",
           "nbv_recon_sampled": "NBV (whole-mesh energy, new poses)",
           "nbv_recon_sampled_m45": "NBV (whole-mesh, new poses, match angle 45°)"}
+# Variants paired with the run they change one option of (a row of their own).
+VARIANT_OF = {"nbv_recon_m45": "nbv_recon", "nbv_recon_sampled_m45": "nbv_recon_sampled",
+              "nbv_recon_nohull": "nbv_recon"}
 COLOURS = {"uniform": "tab:blue", "random": "tab:orange", "coverage": "tab:green", "nbv": "tab:red",
            "nbv_recon": "tab:purple", "nbv_recon_nohull": "tab:pink", "nbv_recon_sampled": "tab:brown",
            "nbv_recon_m45": "tab:gray", "nbv_recon_sampled_m45": "tab:olive"}
@@ -202,6 +207,16 @@ def analyse(dataset, ddir, runs):
                          "final_accuracy_ratio": log_interval(r_acc, t_table),
                          "curve_difference": d_curve}
     result["paired_to_best_baseline"] = paired
+    variants = {}
+    for s, base in VARIANT_OF.items():
+        if s in strategies and base in strategies:
+            d_area = [None if (a is None or b is None) else 100 * (area(a, views) - area(b, views))
+                      for a, b in zip(comp[s], comp[base])]
+            d_final = [None if (a is None or b is None) else 100 * (a[last] - b[last])
+                       for a, b in zip(comp[s], comp[base])]
+            variants[s] = {"base": base, "area_difference": interval(d_area, t_table),
+                           "final_completeness_difference": interval(d_final, t_table)}
+    result["paired_to_variant_base"] = variants
 
     unit, scale = ("mm", 1000.0) if real else ("m", 1.0)
     # Curves with bands.
@@ -284,6 +299,13 @@ def analyse(dataset, ddir, runs):
                                 for s in strategies) + " |")
         lines.append("| | final 90% accuracy ratio | " +
                      " | ".join("—" if s == best else cell(paired[s]["final_accuracy_ratio"], 1.0, 2)
+                                for s in strategies) + " |")
+    if variants:
+        lines.append("| Paired, to the run it varies | area difference (points) | " +
+                     " | ".join(cell(variants[s]["area_difference"]) + " to " + variants[s]["base"]
+                                if s in variants else "—" for s in strategies) + " |")
+        lines.append("| | final completeness difference (points) | " +
+                     " | ".join(cell(variants[s]["final_completeness_difference"]) if s in variants else "—"
                                 for s in strategies) + " |")
     if "uniform" in strategies:
         lines.append("| Views to reach Uniform's final | %% of Uniform's %d (sets reaching it) | " % last +

@@ -20,12 +20,10 @@
 // an existing view as a new one (a twin of a view would gain almost what
 // the view did), while such a ray triangulates nothing new.
 //
-// A candidate must also be matchable (beyond Smith et al.; docs/nbv.md):
-// features match only between views of a point from nearby directions,
-// and a view whose rays are far from every existing view's gets no point
-// (issue #16: sampled poses above the synthetic building's roof, far from
-// the directions of all its ring photos, were picked and added almost
-// nothing, though their many weak pairs scored well). With
+// Optionally a candidate must also be matchable (beyond Smith et al.;
+// docs/nbv.md): features match only between views of a point from nearby
+// directions, and a view whose rays are far from every existing view's
+// gets no point, however many wide pairs the sum gives it. With
 // match_angle < 180, a candidate's increment at a cluster that existing
 // views see counts only where its ray is within match_angle of one of
 // theirs; at a cluster no view sees yet (the first-view credit alone), it
@@ -33,7 +31,8 @@
 // surface it sees (projection, facing, distance; no occlusion test, on an
 // even subsample of at most 256 clusters) that an existing view sees
 // within match_angle of its ray. Batch picks count the same way. Off
-// (180) by default until the paired experiment decides (docs/nbv.md).
+// (180) by default: in the paired experiment it helped on templeRing's
+// ring and hurt the fortress's new poses (docs/nbv.md).
 //
 // A face's utility is -(max(T - h, 0))^2 (the target T = gain_target:
 // diminishing returns, nothing more once reached), its weight the quality
