@@ -91,7 +91,8 @@ void add_suggest_command(CLI::App& app) {
     std::cout << r.candidates_evaluated << " candidate evaluations";
     if (r.candidates_generated)
       std::cout << " (" << r.candidates_generated << " sampled, " << r.rejected_inside
-                << " rejected inside the mesh, " << r.rejected_too_close << " too close)";
+                << " rejected inside the mesh, " << r.rejected_too_close << " too close, "
+                << r.rejected_below_ground << " below the ground)";
     std::cout << ", " << r.seconds << " s\nsuggestions: " << a->out << "\n";
     if (!a->mlp.empty()) {
       // An optional output that cannot hold the lens never fails the main job.

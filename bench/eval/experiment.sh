@@ -86,6 +86,10 @@ for dataset in $ONLY; do
       run "$dataset" nbv_recon_sampled_m45 "$DATA" --view-budget 12 --cache "$WORK/cache/$dataset" \
         --facet-support edges --strategy nbv --energy reconstructability --nbv-candidates sampled \
         --match-angle 45
+      # New poses kept above the ground (the mesh's lowest point).
+      run "$dataset" nbv_recon_sampled_ground "$DATA" --view-budget 12 --cache "$WORK/cache/$dataset" \
+        --facet-support edges --strategy nbv --energy reconstructability --nbv-candidates sampled \
+        --above-ground
       ;;
     *) echo "unknown dataset '$dataset' (temple, building, fortress)" >&2; exit 2 ;;
   esac

@@ -207,6 +207,16 @@ public:
 
   ///@{
   /**
+   * Sampled, refined: no pose below the mesh's lowest point along the
+   * existing views' level up, plus the safety distance (`above_ground`).
+   */
+  vtkSetMacro(AboveGround, vtkTypeBool);
+  vtkGetMacro(AboveGround, vtkTypeBool);
+  vtkBooleanMacro(AboveGround, vtkTypeBool);
+  ///@}
+
+  ///@{
+  /**
    * REFINED: sampled poses refined per pick (`refine_best`) and
    * optimiser iterations (`refine_iterations`).
    */
@@ -298,6 +308,7 @@ protected:
   double IncidenceSigma;
   int Directions;
   double SafetyDistance;
+  vtkTypeBool AboveGround;
   int RefineBest;
   int RefineIterations;
   vtkTypeInt64 Seed;

@@ -441,3 +441,85 @@ TEST(RefineCandidate, RespectsIterationsAndCountsItsEvaluations) {
     previous_energy = energy;
   }
 }
+
+// --- the ground (above_ground) ------------------------------------------------
+
+namespace {
+
+// A ring camera at azimuth `az` (degrees) around the origin, `elevation`
+// degrees above it, looking at the origin, no roll about world +z.
+PinholeCamera ring_camera(double az, double elevation, double distance) {
+  const Vec3 c = distance * Vec3(std::cos(elevation * kDeg) * std::cos(az * kDeg),
+                                 std::cos(elevation * kDeg) * std::sin(az * kDeg), std::sin(elevation * kDeg));
+  return camera_looking(intrinsics(), c, -c, Vec3::UnitZ());
+}
+
+}  // namespace
+
+TEST(LevelUp, ThreeRingViewsLookingDownGiveTheWorldUpWhereTheMeanUpTilts) {
+  // Three neighbours of a ring 25 degrees up, looking down at its centre:
+  // each image-up leans 25 degrees towards the centre, so their mean leans
+  // too (by about 25 degrees); their right axes are horizontal, and the
+  // direction perpendicular to all of them is +z.
+  const std::vector<PinholeCamera> cams = {ring_camera(-15, 25, 20), ring_camera(0, 25, 20),
+                                           ring_camera(15, 25, 20)};
+  const double mean_tilt = std::acos(mean_up(cams).dot(Vec3::UnitZ())) / kDeg;
+  EXPECT_GT(mean_tilt, 20.0);
+  EXPECT_NEAR(level_up(cams).dot(Vec3::UnitZ()), 1.0, 1e-12);
+  // Upside down (every camera rolled 180 degrees) the sign follows them.
+  std::vector<PinholeCamera> flipped;
+  for (const auto& c : cams) flipped.push_back(camera_looking(intrinsics(), c.center(), c.forward(), -Vec3::UnitZ()));
+  EXPECT_NEAR(level_up(flipped).dot(-Vec3::UnitZ()), 1.0, 1e-12);
+}
+
+TEST(LevelUp, ParallelRightAxesFallBackToTheMeanUp) {
+  // One camera, or two on one line of sight: the right axes span one
+  // direction only, and the image up is all there is.
+  const PinholeCamera one = ring_camera(30, 25, 20);
+  EXPECT_NEAR(level_up({one}).dot(-one.down()), 1.0, 1e-12);
+  const PinholeCamera nearer = ring_camera(30, 25, 10);
+  EXPECT_NEAR(level_up({one, nearer}).dot(-one.down()), 1.0, 1e-12);
+}
+
+TEST(GroundHeight, FirstPercentileOfTheHeightsIgnoresAStrayVertex) {
+  // A 2 m box standing on z = 1 (vertices at heights 1 and 3 only) plus one
+  // stray vertex far below: the 1st percentile is still the box's base.
+  TriangleMesh box = synth::make_box(Vec3(0, 0, 1), Vec3(2, 2, 3), 0.25, 0);
+  const double lowest = 1.0;
+  EXPECT_NEAR(ground_height(box, Vec3::UnitZ()), lowest, 1e-12);
+  box.vertices.push_back(Vec3(1, 1, -50));
+  ASSERT_GT(box.vertices.size(), 100u);  // one vertex is less than 1%
+  EXPECT_NEAR(ground_height(box, Vec3::UnitZ()), lowest, 1e-12);
+  // Along -z the "ground" is the box's top (heights -3).
+  EXPECT_NEAR(ground_height(box, -Vec3::UnitZ()), -3.0, 1e-12);
+  EXPECT_THROW(ground_height(TriangleMesh{}, Vec3::UnitZ()), Error);
+}
+
+TEST(SampleCandidates, NoPoseBelowTheGroundAndTheCountsAddUp) {
+  // A wall's region (normal +x) at height 2: its hemisphere reaches 4 m
+  // below and above. With the ground at height 1 every kept pose is at
+  // least that high, those below are counted, and the rest are the poses
+  // the same spiral gives without a ground, in order.
+  const OpenSpace space;
+  SafetyChecker grounded(space.mesh, space.caster, 0.0);
+  grounded.set_ground(Vec3::UnitZ(), 1.0);
+  SamplingOptions o;
+  o.directions = 200;
+  const WorstRegion region = region_at(Vec3(0, 0, 2), Vec3::UnitX());
+  const CandidateSet all = sample_candidates(region, intrinsics(), Vec3::UnitZ(), 4.0, space.safety, o);
+  const CandidateSet set = sample_candidates(region, intrinsics(), Vec3::UnitZ(), 4.0, grounded, o);
+  std::vector<Vec3> expected;
+  for (const auto& c : all.cameras)
+    if (c.center().z() >= 1.0) expected.push_back(c.center());
+  EXPECT_EQ(set.generated, 600u);
+  EXPECT_EQ(set.rejected_below_ground, all.cameras.size() - expected.size());
+  EXPECT_GT(set.rejected_below_ground, 150u);  // the spiral's lower half, about
+  EXPECT_EQ(set.cameras.size() + set.rejected_below_ground + set.rejected_inside + set.rejected_too_close,
+            set.generated);
+  ASSERT_EQ(set.cameras.size(), expected.size());
+  for (std::size_t i = 0; i < expected.size(); ++i)
+    EXPECT_EQ(set.cameras[i].center(), expected[i]) << i;
+  EXPECT_FALSE(grounded.safe(Vec3(0, 0, 0.999)));
+  EXPECT_TRUE(grounded.safe(Vec3(0, 0, 1.001)));
+  EXPECT_THROW(grounded.set_ground(Vec3(0, 0, 2), 1.0), Error);  // not a unit vector
+}

@@ -2,6 +2,7 @@
 // with a message when the colmap executable is missing).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 
@@ -121,6 +122,13 @@ TEST(EvalLoop, TinySyntheticLoopEndToEnd) {
     if (k > 0) {
       EXPECT_FALSE(s.added.empty());
       EXPECT_EQ(s.views.back(), s.added);
+      // Its pose, recorded (loop.json's added_camera): the dataset view's.
+      ASSERT_TRUE(s.has_added_camera);
+      const auto it = std::find_if(d.views.begin(), d.views.end(), [&](const View& v) { return v.label == s.added; });
+      ASSERT_NE(it, d.views.end());
+      EXPECT_LT((s.added_camera.center() - it->camera.center()).norm(), 1e-9);
+    } else {
+      EXPECT_FALSE(s.has_added_camera);
     }
     // Sparse but right: most of the reconstruction within 2% of the diagonal.
     EXPECT_LT(s.metrics.accuracy[0].second, r.thresholds[2]) << "step " << k;
@@ -130,6 +138,11 @@ TEST(EvalLoop, TinySyntheticLoopEndToEnd) {
             r.steps.front().metrics.completeness[2].second - 0.02);
   EXPECT_TRUE(fs::exists(o.out_dir + "/steps.csv"));
   EXPECT_TRUE(fs::exists(o.out_dir + "/loop.json"));
+  {
+    std::ifstream f(o.out_dir + "/loop.json");
+    const std::string text((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+    EXPECT_NE(text.find("\"added_camera\""), std::string::npos);
+  }
   EXPECT_TRUE(fs::exists(o.out_dir + "/reference.ply"));
   // The features and matches are cached: a second workspace reuses them.
   const ColmapWorkspace again(o.cache_dir + "/colmap", d.views);

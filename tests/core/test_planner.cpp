@@ -170,6 +170,43 @@ TEST(Planner, SafeOnAClosedBoxByTheIntervalTest) {
   EXPECT_GT(checked, 100u);
 }
 
+TEST(Planner, AboveGroundKeepsSampledAndRefinedPosesOverTheBase) {
+  // The box stands on z = 0, its worst faces on the +x side at mid-height:
+  // their hemisphere reaches below the base. The ring's cameras look down
+  // 30 degrees with no roll, so the level up is +z and the ground is the
+  // base (z = 0) plus the safety distance. Checked on the poses themselves.
+  test::BoxSceneOptions bo;
+  Scene scene = test::make_box_scene(bo);
+  for (auto& v : scene.views) v.image_path = "unused.png";  // existing views; no image is read
+  std::vector<float> pri(scene.mesh.num_faces(), 0.1f);
+  for (std::size_t face = 0; face < pri.size(); ++face)
+    if (scene.mesh.face_normal(face).x() > 0.9) pri[face] = 0.5f + 0.01f * float(face % 7);
+  SuggestOptions o;
+  o.top = 2;
+  o.refine_best = 4;
+  const SuggestResult off = suggest_views(scene, pri, o);
+  EXPECT_EQ(off.rejected_below_ground, 0u);
+  o.above_ground = true;
+  const double ground = bo.min.z() + o.safety_distance * scene.mesh.bounding_box().diagonal();
+  std::size_t checked = 0;
+  for (CandidateMode mode : {CandidateMode::Sampled, CandidateMode::Refined}) {
+    o.mode = mode;
+    const SuggestResult r = suggest_views(scene, pri, o);
+    EXPECT_GT(r.rejected_below_ground, 400u) << "of " << r.candidates_generated;  // the rule binds
+    std::vector<PinholeCamera> poses;
+    for (const auto& s : r.suggestions) poses.push_back(s.camera);
+    for (const auto& c : r.ranking) poses.push_back(c.camera);
+    for (const auto& cam : poses) {
+      EXPECT_GE(cam.center().z(), ground - 1e-9) << cam.center().transpose();
+      ++checked;
+    }
+    if (mode == CandidateMode::Sampled)
+      EXPECT_EQ(r.candidates_evaluated + r.rejected_inside + r.rejected_too_close + r.rejected_below_ground,
+                r.candidates_generated);
+  }
+  EXPECT_GT(checked, 50u);
+}
+
 TEST(Planner, RefinedModeImprovesTheSampledPick) {
   // The first pick: the best refined pose must beat the best sampled pose
   // it may start from (refine_candidate is tested on a scene with a known

@@ -6,6 +6,8 @@
 #include <map>
 #include <tuple>
 
+#include <Eigen/Eigenvalues>
+
 #include "meshnbv/options.h"
 #include "meshnbv/planner.h"
 #include "meshnbv/error.h"
@@ -21,6 +23,24 @@ SafetyChecker::SafetyChecker(const TriangleMesh& mesh, const RayCaster& caster, 
   for (std::size_t f = 0; f < mesh.faces.size() && !any_area; ++f)
     any_area = mesh.face_area(f) > 1e-14 * diagonal * diagonal;
   if (!any_area) throw Error("the surface has no non-degenerate face");
+}
+
+void SafetyChecker::set_ground(const Vec3& up, double height) {
+  if (!(up.allFinite() && std::abs(up.norm() - 1) < 1e-6) || !std::isfinite(height))
+    throw Error("the ground needs a unit up direction and a finite height");
+  has_ground_ = true;
+  up_ = up;
+  ground_ = height;
+}
+
+double ground_height(const TriangleMesh& mesh, const Vec3& up) {
+  if (mesh.vertices.empty()) throw Error("the mesh has no vertices to take a ground height from");
+  std::vector<double> h;
+  h.reserve(mesh.vertices.size());
+  for (const Vec3& v : mesh.vertices) h.push_back(up.dot(v));
+  const std::size_t k = std::size_t(0.01 * double(h.size() - 1));
+  std::nth_element(h.begin(), h.begin() + std::ptrdiff_t(k), h.end());
+  return h[k];
 }
 
 bool SafetyChecker::inside_volume(const Vec3& p) const {
@@ -63,6 +83,27 @@ Vec3 mean_up(const std::vector<PinholeCamera>& cameras) {
   Vec3 sum = Vec3::Zero();
   for (const auto& c : cameras) sum -= c.down();
   return sum.norm() > 1e-9 ? Vec3(sum.normalized()) : Vec3::UnitZ();
+}
+
+Vec3 level_up(const std::vector<PinholeCamera>& cameras) {
+  const Vec3 m = mean_up(cameras);
+  if (cameras.empty()) return m;
+  Eigen::Matrix3d sum = Eigen::Matrix3d::Zero();
+  Vec3 mean_right = Vec3::Zero();
+  for (const auto& c : cameras) {
+    sum += c.right() * c.right().transpose();
+    mean_right += c.right();
+  }
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(sum);
+  // Ascending eigenvalues: the least is about 0 for level cameras; the
+  // middle one says whether the right axes span a plane.
+  if (eig.eigenvalues()(1) > 1e-3 * eig.eigenvalues()(2)) {
+    Vec3 u = eig.eigenvectors().col(0).normalized();
+    return u.dot(m) < 0 ? Vec3(-u) : u;
+  }
+  const Vec3 r = mean_right.norm() > 1e-9 ? Vec3(mean_right.normalized()) : Vec3::Zero();
+  const Vec3 u = m - m.dot(r) * r;
+  return u.norm() > 1e-9 ? Vec3(u.normalized()) : m;
 }
 
 PinholeCamera most_common_intrinsics(const std::vector<PinholeCamera>& cameras) {
@@ -145,6 +186,10 @@ CandidateSet sample_candidates(const WorstRegion& region, const PinholeCamera& i
     for (double factor : o.distance_factors) {
       ++out.generated;
       const Vec3 centre = region.centroid + factor * distance * dir;
+      if (safety.below_ground(centre)) {
+        ++out.rejected_below_ground;
+        continue;
+      }
       if (safety.too_close(centre)) {
         ++out.rejected_too_close;
         continue;

@@ -382,6 +382,16 @@ const OptionTable<SuggestOptions>& suggest_option_table() {
           "inside the mesh's volume, are rejected",
           closed(0, 10), [](const O& o) { return o.safety_distance; },
           [](O& o, double x) { o.safety_distance = x; }),
+      [] {
+        OptionSpec<O> s{"above_ground", OptionType::Bool, "Stay above the ground",
+                        "sampled, refined: no pose lower than the mesh's lowest point (its 1st "
+                        "percentile of heights along the existing views' level up) plus the safety "
+                        "distance: photographs are taken above the ground the object stands on",
+                        {}, {}, {}, {}};
+        s.get = [](const O& o) { return OptionValue(o.above_ground); };
+        s.set = [](O& o, const OptionValue& v) { o.above_ground = as_bool("above_ground", v); };
+        return s;
+      }(),
       int_option<O>(
           "refine_best", "Refined candidates", "refined: best sampled poses refined per suggestion",
           closed(1, 64), [](const O& o) { return o.refine_best; },

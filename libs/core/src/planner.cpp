@@ -136,12 +136,14 @@ std::vector<Scored> sampled_candidates(const PlannerContext& ctx, const WorstReg
   result->candidates_generated += set.generated;
   result->rejected_inside += set.rejected_inside;
   result->rejected_too_close += set.rejected_too_close;
+  result->rejected_below_ground += set.rejected_below_ground;
   std::vector<Scored> candidates;
   for (const auto& c : set.cameras) candidates.push_back({c, candidate_mode_name(CandidateMode::Sampled), {}});
   if (candidates.empty())
     throw Error("no candidate left: all " + std::to_string(result->candidates_generated) +
-                " sampled poses were inside the mesh or nearer than the safety distance (" +
-                std::to_string(ctx.safety.distance()) + ") to it");
+                " sampled poses were inside the mesh, nearer than the safety distance (" +
+                std::to_string(ctx.safety.distance()) + ") to it" +
+                (ctx.o.above_ground ? std::string(" or below the ground") : std::string()));
   return candidates;
 }
 
@@ -215,7 +217,11 @@ SuggestResult suggest_views(const Scene& scene, const std::vector<float>& pri,
   arena.execute([&] {
     const RayCaster caster(mesh);
     const double diag = mesh.bounding_box().diagonal();
-    const SafetyChecker safety(mesh, caster, o.safety_distance * diag);
+    SafetyChecker safety(mesh, caster, o.safety_distance * diag);
+    if (o.above_ground && o.mode != CandidateMode::Given) {
+      const Vec3 level = level_up(existing_cams);
+      safety.set_ground(level, ground_height(mesh, level) + safety.distance());
+    }
     const PlannerContext ctx{mesh, o, caster, safety, most_common_intrinsics(existing_cams),
                              mean_up(existing_cams)};
     std::vector<Vec3> existing;

@@ -269,7 +269,8 @@ std::string suggestions_json(const SuggestResult& r, const SuggestOptions& o,
   j["candidates"] = {{"generated", r.candidates_generated},
                      {"evaluated", r.candidates_evaluated},
                      {"rejected_inside", r.rejected_inside},
-                     {"rejected_too_close", r.rejected_too_close}};
+                     {"rejected_too_close", r.rejected_too_close},
+                     {"rejected_below_ground", r.rejected_below_ground}};
   j["seconds"] = r.seconds;
   return j.dump(2) + "\n";
 }

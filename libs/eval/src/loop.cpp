@@ -121,6 +121,10 @@ nlohmann::json step_json(const StepRecord& s) {
   j["num_views"] = s.views.size();
   j["views"] = s.views;
   j["added"] = s.added;
+  if (s.has_added_camera) {
+    const Vec3 c = s.added_camera.center(), f = s.added_camera.forward();
+    j["added_camera"] = {{"center", {c.x(), c.y(), c.z()}}, {"forward", {f.x(), f.y(), f.z()}}};
+  }
   j["chosen_by"] = s.chosen_by;
   j["points"] = s.points;
   j["faces"] = s.faces;
@@ -727,6 +731,8 @@ LoopResult run_loop(const Dataset& dataset, const LoopOptions& options,
 
   Choice last_choice;  // the choice that added the newest view (none at step 0)
   std::string added;
+  bool has_added_camera = false;
+  PinholeCamera added_camera;  // a copy: add_view may move the views
   double seconds_choose = 0;
   for (int step = 0;; ++step) {
     report_progress(progress, double(sel.selected.size()) / double(ctx.max_views), "loop");
@@ -736,6 +742,8 @@ LoopResult run_loop(const Dataset& dataset, const LoopOptions& options,
     const bool last = sel.selected.size() >= ctx.max_views || (!continuous && sel.remaining.empty());
     StepRecord rec = measure_step(ctx, step, sel, recon, reference.mesh, eo, snapshot_from, last);
     rec.added = added;
+    rec.has_added_camera = has_added_camera;
+    rec.added_camera = added_camera;
     rec.chosen_by = last_choice.by;
     rec.seconds_pri = last_choice.seconds_pri;
     rec.pri_recomputed = last_choice.pri_recomputed;
@@ -750,6 +758,8 @@ LoopResult run_loop(const Dataset& dataset, const LoopOptions& options,
     const auto t0 = std::chrono::steady_clock::now();
     last_choice = choose_next(ctx, sel, recon, &state);
     if (!add_choice(ctx, last_choice, step, state, &sel, &added)) break;
+    added_camera = ws.views()[std::size_t(sel.selected.back())].camera;
+    has_added_camera = true;
     seconds_choose = seconds_since(t0) - last_choice.seconds_pri;
   }
   if (!options.keep_work) fs::remove_all(work);

@@ -226,7 +226,8 @@ void write_suggestions_section(std::ostream& h, const std::string& folder, const
   h << "</table>\n<p>" << sug.candidates_evaluated << " candidate evaluations";
   if (sug.candidates_generated)
     h << "; " << sug.candidates_generated << " poses sampled, " << sug.rejected_inside << " rejected inside the mesh, "
-      << sug.rejected_too_close << " nearer than the safety distance";
+      << sug.rejected_too_close << " nearer than the safety distance, " << sug.rejected_below_ground
+      << " below the ground";
   h << ".</p>\n<div class=\"row\">\n";
   for (int i = 0; i < n_views; ++i) {
     const auto& s = sug.suggestions[std::size_t(i)];

@@ -434,7 +434,8 @@ void FilterMeshNbvPlugin::suggestNextView(MeshDocument& document, const RichPara
           << " candidate evaluations";
   if (r.candidates_generated)
     summary << " (" << r.candidates_generated << " sampled, " << r.rejected_inside
-            << " rejected inside the mesh, " << r.rejected_too_close << " too close)";
+            << " rejected inside the mesh, " << r.rejected_too_close << " too close, "
+            << r.rejected_below_ground << " below the ground)";
   summary << "; " << format(r.seconds) << " s";
   logLine(summary.str());
 

@@ -28,7 +28,11 @@ class SafetyChecker {
   bool inside_volume(const Vec3& p) const;
   double distance_to_surface(const Vec3& p) const { return caster_.closest_point(p); }
   bool too_close(const Vec3& p) const { return distance_to_surface(p) < distance_; }
-  bool safe(const Vec3& p) const { return !too_close(p) && !inside_volume(p); }
+  // Optional ground: points lower than `height` along the unit `up` are
+  // below it, and not safe.
+  void set_ground(const Vec3& up, double height);
+  bool below_ground(const Vec3& p) const { return has_ground_ && up_.dot(p) < ground_; }
+  bool safe(const Vec3& p) const { return !below_ground(p) && !too_close(p) && !inside_volume(p); }
   double distance() const { return distance_; }
 
  private:
@@ -36,7 +40,15 @@ class SafetyChecker {
   const RayCaster& caster_;
   double distance_;
   double step_;  // how far past a hit the next one is looked for
+  bool has_ground_ = false;
+  Vec3 up_ = Vec3::UnitZ();
+  double ground_ = 0;
 };
+
+// The mesh's lowest height along the unit `up`, robustly: the 1st
+// percentile of its vertices' heights (a stray vertex below does not
+// count). Throws Error for a mesh without vertices.
+double ground_height(const TriangleMesh& mesh, const Vec3& up);
 
 struct SamplingOptions {
   int directions = 512;                               // Fibonacci spiral on the hemisphere
@@ -53,7 +65,7 @@ struct SamplingOptions {
 
 struct CandidateSet {
   std::vector<PinholeCamera> cameras;
-  std::size_t generated = 0, rejected_inside = 0, rejected_too_close = 0;
+  std::size_t generated = 0, rejected_inside = 0, rejected_too_close = 0, rejected_below_ground = 0;
 };
 
 // Median distance from the existing cameras to the surface along their
@@ -62,6 +74,13 @@ double median_viewing_distance(const std::vector<PinholeCamera>& cameras, const 
                                const Vec3& fallback_target);
 // Mean image-up vector of the cameras (world), normalised; +z if undefined.
 Vec3 mean_up(const std::vector<PinholeCamera>& cameras);
+// The world's up as the cameras show it: photographs are taken level (no
+// roll), so every camera's right axis is horizontal and the up direction
+// is the one perpendicular to all of them (the least eigenvector of the
+// sum of r r^T), signed as mean_up. Cameras that look down or up tilt
+// mean_up; this does not. When the right axes are (nearly) parallel, as
+// for one camera, it is mean_up made perpendicular to their mean.
+Vec3 level_up(const std::vector<PinholeCamera>& cameras);
 // The most common intrinsics (fx, fy, cx, cy, size; no distortion).
 PinholeCamera most_common_intrinsics(const std::vector<PinholeCamera>& cameras);
 

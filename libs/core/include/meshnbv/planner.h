@@ -28,6 +28,9 @@ struct SuggestOptions {
   GainOptions gain;
   SamplingOptions sampling;
   double safety_distance = 0.05;  // share of the bounding-box diagonal
+  // sampled, refined: no pose below the mesh's lowest point (ground_height
+  // along level_up of the existing views) plus the safety distance.
+  bool above_ground = false;
   int refine_best = 8;            // refined mode: sampled candidates refined per pick
   RefineOptions refine;
   int threads = 0;                // 0 = all cores
@@ -61,7 +64,7 @@ struct SuggestResult {
   // given mode; the best 50 otherwise).
   std::vector<RankedCandidate> ranking;
   std::size_t candidates_generated = 0, candidates_evaluated = 0;
-  std::size_t rejected_inside = 0, rejected_too_close = 0;
+  std::size_t rejected_inside = 0, rejected_too_close = 0, rejected_below_ground = 0;
   double seconds = 0;
 };
 

@@ -104,6 +104,8 @@ struct StepRecord {
   int step = 0;                 // 0 = bootstrap
   std::vector<std::string> views;  // labels of all views used so far
   std::string added;            // the view added before this step (empty at step 0)
+  bool has_added_camera = false;  // its pose (a new pose's too), in loop.json
+  PinholeCamera added_camera;
   std::string chosen_by;        // strategy that chose it ("uniform (fallback)" ...)
   std::size_t points = 0, faces = 0;
   EvaluationResult metrics;
