@@ -45,7 +45,7 @@ LABELS = {"uniform": "Uniform", "random": "Random (mean of seeds)", "coverage": 
           "nbv": "NBV (paper's energy)", "nbv_recon": "NBV (whole-mesh energy)",
           "nbv_recon_nohull": "NBV (whole-mesh, no hull)",
           "nbv_recon_m45": "NBV (whole-mesh, match angle 45°)",
-          "nbv_recon_sampled": "NBV (whole-mesh energy, new poses)",
+          "nbv_recon_sampled": "NBV (whole-mesh energy, new poses, whole hemisphere)",
           "nbv_recon_sampled_m45": "NBV (whole-mesh, new poses, match angle 45°)",
           "nbv_recon_sampled_ground": "NBV (whole-mesh, new poses above the ground)"}
 # Variants paired with the run they change one option of (a row of their own).

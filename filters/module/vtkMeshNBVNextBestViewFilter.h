@@ -208,7 +208,8 @@ public:
   ///@{
   /**
    * Sampled, refined: no pose below the mesh's lowest point along the
-   * existing views' level up, plus the safety distance (`above_ground`).
+   * existing views' level up, plus the safety distance, or below the
+   * lowest existing view where that is lower (`above_ground`, on).
    */
   vtkSetMacro(AboveGround, vtkTypeBool);
   vtkGetMacro(AboveGround, vtkTypeBool);

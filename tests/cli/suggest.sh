@@ -17,7 +17,7 @@ for k, g in enumerate(s["suggestions"]):
     assert set(g["seen_faces"]) <= set(s["regions"][g["region"]]["faces"])
 assert s["options"]["candidates"] == "sampled" and [s["options"][k] for k in ("weight_occlusion", "weight_focus", "weight_parallax", "weight_incidence")] == [0.6, 1.6, 2.1, 0.6]
 c = s["candidates"]
-assert c["generated"] == 3 * 512 * 3 and c["evaluated"] + c["rejected_inside"] + c["rejected_too_close"] == c["generated"]
+assert c["generated"] == 3 * 512 * 3 and c["evaluated"] + c["rejected_inside"] + c["rejected_too_close"] + c["rejected_below_ground"] == c["generated"]
 assert len(s["ranking"]) == 50
 PY
 "$MESHNBV" info "$TMP/s.mlp" | grep -q "views      15 (12 with image" || fail "mlp has the 3 suggested rasters"

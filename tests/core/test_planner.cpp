@@ -6,6 +6,8 @@
 #include "meshnbv/error.h"
 #include "meshnbv/planner.h"
 #include "meshnbv/pri.h"
+#include "meshnbv/candidates.h"
+#include "meshnbv/synth/generators.h"
 #include "meshnbv/synth/project.h"
 #include "box_scene.h"
 #include "test_geometry.h"
@@ -111,7 +113,8 @@ TEST(Planner, TopSuggestionSeesTheRegionWithParallax) {
   EXPECT_EQ(s.label, "nbv_1");
   expect_safe(f.project.scene, s.camera, o.safety_distance, s.label);
   EXPECT_EQ(r.candidates_generated, 512u * 3u);
-  EXPECT_EQ(r.candidates_evaluated + r.rejected_inside + r.rejected_too_close, r.candidates_generated);
+  EXPECT_EQ(r.candidates_evaluated + r.rejected_inside + r.rejected_too_close + r.rejected_below_ground,
+            r.candidates_generated);
 }
 
 TEST(Planner, SampledAndRefinedRespectSafety) {
@@ -184,6 +187,7 @@ TEST(Planner, AboveGroundKeepsSampledAndRefinedPosesOverTheBase) {
   SuggestOptions o;
   o.top = 2;
   o.refine_best = 4;
+  o.above_ground = false;  // the SPEC's whole hemisphere
   const SuggestResult off = suggest_views(scene, pri, o);
   EXPECT_EQ(off.rejected_below_ground, 0u);
   o.above_ground = true;
@@ -205,6 +209,35 @@ TEST(Planner, AboveGroundKeepsSampledAndRefinedPosesOverTheBase) {
                 r.candidates_generated);
   }
   EXPECT_GT(checked, 50u);
+}
+
+TEST(Planner, AboveGroundUnderACeilingIsTheLowestView) {
+  // A slab at z in [5, 5.5] photographed from below (cameras at z = 0 on a
+  // ring, looking up at its underside): the mesh's lowest point is above
+  // every camera, so the ground is the lowest camera (z = 0), not the
+  // slab: poses stay possible, none below z = 0, and the rule binds.
+  Scene scene;
+  scene.mesh = synth::make_box(Vec3(-2, -2, 5), Vec3(2, 2, 5.5), 0.5, 0);
+  for (int k = 0; k < 6; ++k) {
+    const double a = k * M_PI / 3;
+    View v;
+    v.label = "below_" + std::to_string(k);
+    v.image_path = "unused.png";  // existing views; no image is read
+    const Vec3 c(5 * std::cos(a), 5 * std::sin(a), 0);
+    v.camera = camera_looking(test::centred_camera(500, 640, 480), c, Vec3(0, 0, 5) - c, Vec3::UnitZ());
+    scene.views.push_back(v);
+  }
+  std::vector<float> pri(scene.mesh.num_faces(), 0.1f);
+  for (std::size_t face = 0; face < pri.size(); ++face)
+    if (scene.mesh.face_normal(face).z() < -0.9) pri[face] = 0.5f + 0.01f * float(face % 7);
+  SuggestOptions o;
+  o.top = 2;
+  ASSERT_TRUE(o.above_ground);  // the default
+  const SuggestResult r = suggest_views(scene, pri, o);
+  ASSERT_EQ(r.suggestions.size(), 2u);
+  EXPECT_GT(r.rejected_below_ground, 100u) << "of " << r.candidates_generated;
+  for (const auto& s : r.suggestions) EXPECT_GE(s.camera.center().z(), -1e-9) << s.label;
+  for (const auto& c : r.ranking) EXPECT_GE(c.camera.center().z(), -1e-9) << c.label;
 }
 
 TEST(Planner, RefinedModeImprovesTheSampledPick) {
@@ -235,8 +268,10 @@ TEST(Planner, RefinedModeCountsItsEnergyEvaluations) {
   o.top = 1;  // one pick: the tally below follows the first pick's refinements
   o.refine_best = 3;
   o.refine.iterations = 40;
+  o.above_ground = false;  // the refinements below use a checker without a ground
   const SuggestResult sampled = suggest_views(scene, f.oracle, o);
-  EXPECT_EQ(sampled.candidates_evaluated + sampled.rejected_inside + sampled.rejected_too_close,
+  EXPECT_EQ(sampled.candidates_evaluated + sampled.rejected_inside + sampled.rejected_too_close +
+                sampled.rejected_below_ground,
             sampled.candidates_generated);
   o.mode = CandidateMode::Refined;
   const SuggestResult refined = suggest_views(scene, f.oracle, o);

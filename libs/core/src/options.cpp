@@ -386,7 +386,9 @@ const OptionTable<SuggestOptions>& suggest_option_table() {
         OptionSpec<O> s{"above_ground", OptionType::Bool, "Stay above the ground",
                         "sampled, refined: no pose lower than the mesh's lowest point (its 1st "
                         "percentile of heights along the existing views' level up) plus the safety "
-                        "distance: photographs are taken above the ground the object stands on",
+                        "distance, or than the lowest existing view where that is lower: "
+                        "photographs are taken above the ground the object stands on (off = the "
+                        "paper's whole hemisphere)",
                         {}, {}, {}, {}};
         s.get = [](const O& o) { return OptionValue(o.above_ground); };
         s.set = [](O& o, const OptionValue& v) { o.above_ground = as_bool("above_ground", v); };

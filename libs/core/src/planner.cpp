@@ -220,7 +220,12 @@ SuggestResult suggest_views(const Scene& scene, const std::vector<float>& pri,
     SafetyChecker safety(mesh, caster, o.safety_distance * diag);
     if (o.above_ground && o.mode != CandidateMode::Given) {
       const Vec3 level = level_up(existing_cams);
-      safety.set_ground(level, ground_height(mesh, level) + safety.distance());
+      // The ground: the mesh's lowest point plus the safety distance, or
+      // the lowest existing camera where one is lower (views from below a
+      // ceiling or an overhang stay possible).
+      double ground = ground_height(mesh, level) + safety.distance();
+      for (const auto& c : existing_cams) ground = std::min(ground, level.dot(c.center()));
+      safety.set_ground(level, ground);
     }
     const PlannerContext ctx{mesh, o, caster, safety, most_common_intrinsics(existing_cams),
                              mean_up(existing_cams)};

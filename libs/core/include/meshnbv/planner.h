@@ -28,9 +28,11 @@ struct SuggestOptions {
   GainOptions gain;
   SamplingOptions sampling;
   double safety_distance = 0.05;  // share of the bounding-box diagonal
-  // sampled, refined: no pose below the mesh's lowest point (ground_height
-  // along level_up of the existing views) plus the safety distance.
-  bool above_ground = false;
+  // sampled, refined: no pose below the ground: the mesh's lowest point
+  // (ground_height along level_up of the existing views) plus the safety
+  // distance, or the lowest existing view where that is lower. On by
+  // default (beyond the SPEC's hemisphere; docs/deviations.md).
+  bool above_ground = true;
   int refine_best = 8;            // refined mode: sampled candidates refined per pick
   RefineOptions refine;
   int threads = 0;                // 0 = all cores
