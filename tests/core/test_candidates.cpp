@@ -449,8 +449,8 @@ namespace {
 // A ring camera at azimuth `az` (degrees) around the origin, `elevation`
 // degrees above it, looking at the origin, no roll about world +z.
 PinholeCamera ring_camera(double az, double elevation, double distance) {
-  const Vec3 c = distance * Vec3(std::cos(elevation * kDeg) * std::cos(az * kDeg),
-                                 std::cos(elevation * kDeg) * std::sin(az * kDeg), std::sin(elevation * kDeg));
+  const double e = elevation * kDeg, a = az * kDeg;
+  const Vec3 c = distance * Vec3(std::cos(e) * std::cos(a), std::cos(e) * std::sin(a), std::sin(e));
   return camera_looking(intrinsics(), c, -c, Vec3::UnitZ());
 }
 
@@ -468,7 +468,8 @@ TEST(LevelUp, ThreeRingViewsLookingDownGiveTheWorldUpWhereTheMeanUpTilts) {
   EXPECT_NEAR(level_up(cams).dot(Vec3::UnitZ()), 1.0, 1e-12);
   // Upside down (every camera rolled 180 degrees) the sign follows them.
   std::vector<PinholeCamera> flipped;
-  for (const auto& c : cams) flipped.push_back(camera_looking(intrinsics(), c.center(), c.forward(), -Vec3::UnitZ()));
+  for (const auto& c : cams)
+    flipped.push_back(camera_looking(intrinsics(), c.center(), c.forward(), -Vec3::UnitZ()));
   EXPECT_NEAR(level_up(flipped).dot(-Vec3::UnitZ()), 1.0, 1e-12);
 }
 

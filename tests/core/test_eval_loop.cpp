@@ -124,7 +124,8 @@ TEST(EvalLoop, TinySyntheticLoopEndToEnd) {
       EXPECT_EQ(s.views.back(), s.added);
       // Its pose, recorded (loop.json's added_camera): the dataset view's.
       ASSERT_TRUE(s.has_added_camera);
-      const auto it = std::find_if(d.views.begin(), d.views.end(), [&](const View& v) { return v.label == s.added; });
+      const auto it =
+          std::find_if(d.views.begin(), d.views.end(), [&](const View& v) { return v.label == s.added; });
       ASSERT_NE(it, d.views.end());
       EXPECT_LT((s.added_camera.center() - it->camera.center()).norm(), 1e-9);
     } else {

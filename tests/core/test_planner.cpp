@@ -138,17 +138,41 @@ TEST(Planner, SampledAndRefinedRespectSafety) {
             << sampled.rejected_inside << " of " << sampled.candidates_generated << "\n";
 }
 
+namespace {
+
+// The box scene with its existing views (no image is read) and a PRI that
+// makes the faces of its +x side the worst.
+struct WorstSideBox {
+  test::BoxSceneOptions bo;
+  Scene scene = test::make_box_scene(bo);
+  std::vector<float> pri;
+  WorstSideBox() {
+    for (auto& v : scene.views) v.image_path = "unused.png";
+    pri.assign(scene.mesh.num_faces(), 0.1f);
+    for (std::size_t face = 0; face < pri.size(); ++face)
+      if (scene.mesh.face_normal(face).x() > 0.9) pri[face] = 0.5f + 0.01f * float(face % 7);
+  }
+};
+
+// Every pose a result holds: its suggestions, then its ranking.
+std::vector<PinholeCamera> suggested_and_ranked(const SuggestResult& r) {
+  std::vector<PinholeCamera> poses;
+  for (const auto& s : r.suggestions) poses.push_back(s.camera);
+  for (const auto& c : r.ranking) poses.push_back(c.camera);
+  return poses;
+}
+
+}  // namespace
+
 TEST(Planner, SafeOnAClosedBoxByTheIntervalTest) {
   // A closed 1 x 0.8 x 0.6 m box, the worst region on its +x side. Every
   // suggestion and ranked pose, sampled and refined, is outside the box by
   // its interval test and at least the safety distance from its surface
   // by the box's own distance function (no SafetyChecker involved).
-  test::BoxSceneOptions bo;
-  Scene scene = test::make_box_scene(bo);
-  for (auto& v : scene.views) v.image_path = "unused.png";  // existing views; no image is read
-  std::vector<float> pri(scene.mesh.num_faces(), 0.1f);
-  for (std::size_t face = 0; face < pri.size(); ++face)
-    if (scene.mesh.face_normal(face).x() > 0.9) pri[face] = 0.5f + 0.01f * float(face % 7);
+  const WorstSideBox box;
+  const test::BoxSceneOptions& bo = box.bo;
+  const Scene& scene = box.scene;
+  const std::vector<float>& pri = box.pri;
   SuggestOptions o;
   o.top = 2;
   o.safety_distance = 0.25;
@@ -160,10 +184,7 @@ TEST(Planner, SafeOnAClosedBoxByTheIntervalTest) {
     o.mode = mode;
     const SuggestResult r = suggest_views(scene, pri, o);
     EXPECT_GT(r.rejected_too_close, 0u);
-    std::vector<PinholeCamera> poses;
-    for (const auto& s : r.suggestions) poses.push_back(s.camera);
-    for (const auto& c : r.ranking) poses.push_back(c.camera);
-    for (const auto& cam : poses) {
+    for (const auto& cam : suggested_and_ranked(r)) {
       const Vec3 c = cam.center();
       EXPECT_FALSE(test::in_box(c, bo.min, bo.max)) << c.transpose();
       EXPECT_GE(test::box_surface_distance(c, bo.min, bo.max), limit) << c.transpose();
@@ -178,12 +199,10 @@ TEST(Planner, AboveGroundKeepsSampledAndRefinedPosesOverTheBase) {
   // their hemisphere reaches below the base. The ring's cameras look down
   // 30 degrees with no roll, so the level up is +z and the ground is the
   // base (z = 0) plus the safety distance. Checked on the poses themselves.
-  test::BoxSceneOptions bo;
-  Scene scene = test::make_box_scene(bo);
-  for (auto& v : scene.views) v.image_path = "unused.png";  // existing views; no image is read
-  std::vector<float> pri(scene.mesh.num_faces(), 0.1f);
-  for (std::size_t face = 0; face < pri.size(); ++face)
-    if (scene.mesh.face_normal(face).x() > 0.9) pri[face] = 0.5f + 0.01f * float(face % 7);
+  const WorstSideBox box;
+  const test::BoxSceneOptions& bo = box.bo;
+  const Scene& scene = box.scene;
+  const std::vector<float>& pri = box.pri;
   SuggestOptions o;
   o.top = 2;
   o.refine_best = 4;
@@ -197,10 +216,7 @@ TEST(Planner, AboveGroundKeepsSampledAndRefinedPosesOverTheBase) {
     o.mode = mode;
     const SuggestResult r = suggest_views(scene, pri, o);
     EXPECT_GT(r.rejected_below_ground, 400u) << "of " << r.candidates_generated;  // the rule binds
-    std::vector<PinholeCamera> poses;
-    for (const auto& s : r.suggestions) poses.push_back(s.camera);
-    for (const auto& c : r.ranking) poses.push_back(c.camera);
-    for (const auto& cam : poses) {
+    for (const auto& cam : suggested_and_ranked(r)) {
       EXPECT_GE(cam.center().z(), ground - 1e-9) << cam.center().transpose();
       ++checked;
     }
@@ -236,8 +252,8 @@ TEST(Planner, AboveGroundUnderACeilingIsTheLowestView) {
   const SuggestResult r = suggest_views(scene, pri, o);
   ASSERT_EQ(r.suggestions.size(), 2u);
   EXPECT_GT(r.rejected_below_ground, 100u) << "of " << r.candidates_generated;
-  for (const auto& s : r.suggestions) EXPECT_GE(s.camera.center().z(), -1e-9) << s.label;
-  for (const auto& c : r.ranking) EXPECT_GE(c.camera.center().z(), -1e-9) << c.label;
+  for (const auto& cam : suggested_and_ranked(r))
+    EXPECT_GE(cam.center().z(), -1e-9) << cam.center().transpose();
 }
 
 TEST(Planner, RefinedModeImprovesTheSampledPick) {
