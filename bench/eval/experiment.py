@@ -40,22 +40,24 @@ import matplotlib.pyplot as plt  # noqa: E402
 
 BASELINES = ["uniform", "random", "coverage"]
 ORDER = BASELINES + ["nbv", "nbv_recon", "nbv_recon_m45", "nbv_recon_nohull", "nbv_recon_sampled",
-                     "nbv_recon_sampled_m45", "nbv_recon_sampled_ground"]
+                     "nbv_recon_sampled_m45", "nbv_recon_sampled_ground", "nbv_recon_sampled_level"]
 LABELS = {"uniform": "Uniform", "random": "Random (mean of seeds)", "coverage": "Coverage",
           "nbv": "NBV (paper's energy)", "nbv_recon": "NBV (whole-mesh energy)",
           "nbv_recon_nohull": "NBV (whole-mesh, no hull)",
           "nbv_recon_m45": "NBV (whole-mesh, match angle 45°)",
           "nbv_recon_sampled": "NBV (whole-mesh energy, new poses, whole hemisphere)",
           "nbv_recon_sampled_m45": "NBV (whole-mesh, new poses, match angle 45°)",
-          "nbv_recon_sampled_ground": "NBV (whole-mesh, new poses above the ground)"}
+          "nbv_recon_sampled_ground": "NBV (whole-mesh, new poses above the ground)",
+          "nbv_recon_sampled_level": "NBV (whole-mesh, new poses above the ground, level)"}
 # Variants paired with the run they change one option of (a row of their own).
 VARIANT_OF = {"nbv_recon_m45": "nbv_recon", "nbv_recon_sampled_m45": "nbv_recon_sampled",
               "nbv_recon_sampled_ground": "nbv_recon_sampled",
+              "nbv_recon_sampled_level": "nbv_recon_sampled_ground",
               "nbv_recon_nohull": "nbv_recon"}
 COLOURS = {"uniform": "tab:blue", "random": "tab:orange", "coverage": "tab:green", "nbv": "tab:red",
            "nbv_recon": "tab:purple", "nbv_recon_nohull": "tab:pink", "nbv_recon_sampled": "tab:brown",
            "nbv_recon_m45": "tab:gray", "nbv_recon_sampled_m45": "tab:olive",
-           "nbv_recon_sampled_ground": "tab:cyan"}
+           "nbv_recon_sampled_ground": "tab:cyan", "nbv_recon_sampled_level": "black"}
 
 
 def load_runs(dataset_dir):

@@ -93,6 +93,10 @@ for dataset in $ONLY; do
       run "$dataset" nbv_recon_sampled_ground "$DATA" --view-budget 12 --cache "$WORK/cache/$dataset" \
         --facet-support edges --strategy nbv --energy reconstructability --nbv-candidates sampled \
         --above-ground
+      # Level new poses (no roll, image up towards the views' level up).
+      run "$dataset" nbv_recon_sampled_level "$DATA" --view-budget 12 --cache "$WORK/cache/$dataset" \
+        --facet-support edges --strategy nbv --energy reconstructability --nbv-candidates sampled \
+        --above-ground --level-views
       ;;
     *) echo "unknown dataset '$dataset' (temple, building, fortress)" >&2; exit 2 ;;
   esac

@@ -166,6 +166,7 @@ meshnbv::SuggestOptions RawOptionsOf(vtkMeshNBVNextBestViewFilter* f)
   o.sampling.seed = f->GetSeed() < 0 ? std::numeric_limits<std::uint64_t>::max() : std::uint64_t(f->GetSeed());
   o.safety_distance = f->GetSafetyDistance();
   o.above_ground = f->GetAboveGround() != 0;
+  o.level_views = f->GetLevelViews() != 0;
   o.refine_best = f->GetRefineBest();
   o.refine.iterations = f->GetRefineIterations();
   o.threads = f->GetThreads();
@@ -222,6 +223,7 @@ vtkMeshNBVNextBestViewFilter::vtkMeshNBVNextBestViewFilter()
   this->Directions = defaults.sampling.directions;
   this->SafetyDistance = defaults.safety_distance;
   this->AboveGround = defaults.above_ground;
+  this->LevelViews = defaults.level_views;
   this->RefineBest = defaults.refine_best;
   this->RefineIterations = defaults.refine.iterations;
   this->Seed = vtkTypeInt64(defaults.sampling.seed);

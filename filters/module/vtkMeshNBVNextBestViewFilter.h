@@ -218,6 +218,16 @@ public:
 
   ///@{
   /**
+   * Sampled, refined: poses without roll, image up towards the existing
+   * views' level up, as a gimbal takes them (`level_views`, off).
+   */
+  vtkSetMacro(LevelViews, vtkTypeBool);
+  vtkGetMacro(LevelViews, vtkTypeBool);
+  vtkBooleanMacro(LevelViews, vtkTypeBool);
+  ///@}
+
+  ///@{
+  /**
    * REFINED: sampled poses refined per pick (`refine_best`) and
    * optimiser iterations (`refine_iterations`).
    */
@@ -310,6 +320,7 @@ protected:
   int Directions;
   double SafetyDistance;
   vtkTypeBool AboveGround;
+  vtkTypeBool LevelViews;
   int RefineBest;
   int RefineIterations;
   vtkTypeInt64 Seed;

@@ -227,6 +227,36 @@ TEST(Planner, AboveGroundKeepsSampledAndRefinedPosesOverTheBase) {
   EXPECT_GT(checked, 50u);
 }
 
+TEST(Planner, LevelViewsHaveNoRollWhereTheMeanUpLeans) {
+  // Only three neighbouring views of the ring, looking down 30 degrees with
+  // no roll: their mean image up leans 30 degrees towards where they look,
+  // so the SPEC's up rolls poses that look from elsewhere; level views keep
+  // every pose's right axis horizontal (perpendicular to +z, the views'
+  // level up), and their image up points up.
+  WorstSideBox box;
+  box.scene.views.resize(3);
+  const std::vector<float>& pri = box.pri;
+  SuggestOptions o;
+  o.top = 2;
+  o.refine_best = 4;
+  for (CandidateMode mode : {CandidateMode::Sampled, CandidateMode::Refined}) {
+    o.mode = mode;
+    o.level_views = false;
+    double most_roll = 0;
+    for (const auto& cam : suggested_and_ranked(suggest_views(box.scene, pri, o)))
+      most_roll = std::max(most_roll, std::abs(cam.right().z()));
+    EXPECT_GT(most_roll, 0.1) << "the mean up leans: some pose is rolled";
+    o.level_views = true;
+    std::size_t checked = 0;
+    for (const auto& cam : suggested_and_ranked(suggest_views(box.scene, pri, o))) {
+      EXPECT_NEAR(cam.right().z(), 0.0, 1e-9) << cam.center().transpose();
+      EXPECT_LT(cam.down().z(), 0.0) << "image up points up";
+      ++checked;
+    }
+    EXPECT_GT(checked, 20u);
+  }
+}
+
 TEST(Planner, AboveGroundUnderACeilingIsTheLowestView) {
   // A slab at z in [5, 5.5] photographed from below (cameras at z = 0 on a
   // ring, looking up at its underside): the mesh's lowest point is above

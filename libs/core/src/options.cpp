@@ -394,6 +394,16 @@ const OptionTable<SuggestOptions>& suggest_option_table() {
         s.set = [](O& o, const OptionValue& v) { o.above_ground = as_bool("above_ground", v); };
         return s;
       }(),
+      [] {
+        OptionSpec<O> s{"level_views", OptionType::Bool, "Level views",
+                        "sampled, refined: poses without roll, their image up towards the existing "
+                        "views' level up (the direction perpendicular to their right axes), as a "
+                        "gimbal takes photos (off = the paper's mean image up of the existing views)",
+                        {}, {}, {}, {}};
+        s.get = [](const O& o) { return OptionValue(o.level_views); };
+        s.set = [](O& o, const OptionValue& v) { o.level_views = as_bool("level_views", v); };
+        return s;
+      }(),
       int_option<O>(
           "refine_best", "Refined candidates", "refined: best sampled poses refined per suggestion",
           closed(1, 64), [](const O& o) { return o.refine_best; },

@@ -218,8 +218,8 @@ SuggestResult suggest_views(const Scene& scene, const std::vector<float>& pri,
     const RayCaster caster(mesh);
     const double diag = mesh.bounding_box().diagonal();
     SafetyChecker safety(mesh, caster, o.safety_distance * diag);
+    const Vec3 level = level_up(existing_cams);
     if (o.above_ground && o.mode != CandidateMode::Given) {
-      const Vec3 level = level_up(existing_cams);
       // The ground: the mesh's lowest point plus the safety distance, or
       // the lowest existing camera where one is lower (views from below a
       // ceiling or an overhang stay possible).
@@ -228,7 +228,7 @@ SuggestResult suggest_views(const Scene& scene, const std::vector<float>& pri,
       safety.set_ground(level, ground);
     }
     const PlannerContext ctx{mesh, o, caster, safety, most_common_intrinsics(existing_cams),
-                             mean_up(existing_cams)};
+                             o.level_views ? level : mean_up(existing_cams)};
     std::vector<Vec3> existing;
     for (const auto& c : existing_cams) existing.push_back(c.center());
 

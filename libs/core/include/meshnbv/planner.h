@@ -33,6 +33,10 @@ struct SuggestOptions {
   // distance, or the lowest existing view where that is lower. On by
   // default (beyond the SPEC's hemisphere; docs/deviations.md).
   bool above_ground = true;
+  // sampled, refined: poses without roll, their image up in the plane of
+  // level_up (the existing views' right axes are level) and the view
+  // direction, as a gimbal takes them; off = the SPEC's mean image up.
+  bool level_views = false;
   int refine_best = 8;            // refined mode: sampled candidates refined per pick
   RefineOptions refine;
   int threads = 0;                // 0 = all cores
