@@ -81,19 +81,21 @@ for dataset in $ONLY; do
       fi
       strategies "$dataset" "$DATA" --view-budget 12 --cache "$WORK/cache/$dataset" --facet-support edges
       # New poses anywhere (rendered): the whole-mesh energy's sampled candidates.
-      # (--no-above-ground: the SPEC's whole hemisphere, as these runs were
-      # first measured; the default keeps new poses above the ground.)
+      # (--no-above-ground --no-level-views: the SPEC's whole hemisphere and
+      # mean image up, as these runs were first measured; the defaults keep
+      # new poses above the ground and level.)
       run "$dataset" nbv_recon_sampled "$DATA" --view-budget 12 --cache "$WORK/cache/$dataset" \
         --facet-support edges --strategy nbv --energy reconstructability --nbv-candidates sampled \
-        --no-above-ground
+        --no-above-ground --no-level-views
       run "$dataset" nbv_recon_sampled_m45 "$DATA" --view-budget 12 --cache "$WORK/cache/$dataset" \
         --facet-support edges --strategy nbv --energy reconstructability --nbv-candidates sampled \
-        --match-angle 45 --no-above-ground
-      # New poses kept above the ground (the default; the mesh's lowest point).
+        --match-angle 45 --no-above-ground --no-level-views
+      # New poses kept above the ground (the default; the mesh's lowest point),
+      # with the SPEC's mean image up.
       run "$dataset" nbv_recon_sampled_ground "$DATA" --view-budget 12 --cache "$WORK/cache/$dataset" \
         --facet-support edges --strategy nbv --energy reconstructability --nbv-candidates sampled \
-        --above-ground
-      # Level new poses (no roll, image up towards the views' level up).
+        --above-ground --no-level-views
+      # Level new poses (no roll, image up towards the views' level up; the default).
       run "$dataset" nbv_recon_sampled_level "$DATA" --view-budget 12 --cache "$WORK/cache/$dataset" \
         --facet-support edges --strategy nbv --energy reconstructability --nbv-candidates sampled \
         --above-ground --level-views

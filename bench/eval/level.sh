@@ -10,7 +10,8 @@
 #   bench/eval/level.sh [BUILD_DIR]
 #   ONLY="building fortress"   synthetic datasets (new poses need a truth to render)
 #
-# Results: bench/results/eval/level/sparse/ (as experiment.sh's).
+# Results: bench/results/eval/level/sparse/ (as experiment.sh's), and
+# below_base.md: the added views below the mesh's base.
 set -euo pipefail
 ROOT=$(cd "$(dirname "$0")/../.." && pwd)
 BUILD=${1:-build}
@@ -20,3 +21,5 @@ for dataset in $ONLY; do
   RESULTS=$OUT BACKEND=sparse ONLY=$dataset RUNS='uniform|coverage|nbv_recon_sampled_ground|nbv_recon_sampled_level' \
     "$ROOT/bench/eval/experiment.sh" "$BUILD"
 done
+# The added views below the base, per run (below_base.md).
+/usr/bin/python3 "$ROOT/bench/eval/below_base.py" "$OUT"

@@ -219,7 +219,7 @@ public:
   ///@{
   /**
    * Sampled, refined: poses without roll, image up towards the existing
-   * views' level up, as a gimbal takes them (`level_views`, off).
+   * views' level up, as a gimbal takes them (`level_views`, on).
    */
   vtkSetMacro(LevelViews, vtkTypeBool);
   vtkGetMacro(LevelViews, vtkTypeBool);

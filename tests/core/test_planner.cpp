@@ -315,6 +315,7 @@ TEST(Planner, RefinedModeCountsItsEnergyEvaluations) {
   o.refine_best = 3;
   o.refine.iterations = 40;
   o.above_ground = false;  // the refinements below use a checker without a ground
+  // (level_views on: the refinements keep the views' level up, as below)
   const SuggestResult sampled = suggest_views(scene, f.oracle, o);
   EXPECT_EQ(sampled.candidates_evaluated + sampled.rejected_inside + sampled.rejected_too_close +
                 sampled.rejected_below_ground,
@@ -332,7 +333,8 @@ TEST(Planner, RefinedModeCountsItsEnergyEvaluations) {
   double best = -std::numeric_limits<double>::infinity();
   for (int i = 0; i < o.refine_best; ++i) {
     const std::size_t before = e.evaluations();
-    const PinholeCamera r = refine_candidate(sampled.ranking[std::size_t(i)].camera, mean_up(cams), e, safety, o.refine);
+    const PinholeCamera r =
+        refine_candidate(sampled.ranking[std::size_t(i)].camera, level_up(cams), e, safety, o.refine);
     tally += e.evaluations() - before;
     best = std::max(best, e.evaluate(r).total);
   }

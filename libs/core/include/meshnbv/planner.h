@@ -36,7 +36,8 @@ struct SuggestOptions {
   // sampled, refined: poses without roll, their image up in the plane of
   // level_up (the existing views' right axes are level) and the view
   // direction, as a gimbal takes them; off = the SPEC's mean image up.
-  bool level_views = false;
+  // On by default (docs/deviations.md).
+  bool level_views = true;
   int refine_best = 8;            // refined mode: sampled candidates refined per pick
   RefineOptions refine;
   int threads = 0;                // 0 = all cores
