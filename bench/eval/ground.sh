@@ -15,7 +15,5 @@ ROOT=$(cd "$(dirname "$0")/../.." && pwd)
 BUILD=${1:-build}
 ONLY=${ONLY:-building fortress}
 OUT=$ROOT/bench/results/eval/ground/sparse
-for dataset in $ONLY; do
-  RESULTS=$OUT BACKEND=sparse ONLY=$dataset RUNS='uniform|coverage|nbv_recon_sampled|nbv_recon_sampled_ground' \
-    "$ROOT/bench/eval/experiment.sh" "$BUILD"
-done
+RESULTS=$OUT BACKEND=sparse ONLY=$ONLY RUNS='uniform|coverage|nbv_recon_sampled|nbv_recon_sampled_ground' \
+  "$ROOT/bench/eval/experiment.sh" "$BUILD"

@@ -17,9 +17,7 @@ ROOT=$(cd "$(dirname "$0")/../.." && pwd)
 BUILD=${1:-build}
 ONLY=${ONLY:-building fortress}
 OUT=$ROOT/bench/results/eval/level/sparse
-for dataset in $ONLY; do
-  RESULTS=$OUT BACKEND=sparse ONLY=$dataset RUNS='uniform|coverage|nbv_recon_sampled_ground|nbv_recon_sampled_level' \
-    "$ROOT/bench/eval/experiment.sh" "$BUILD"
-done
+RESULTS=$OUT BACKEND=sparse ONLY=$ONLY RUNS='uniform|coverage|nbv_recon_sampled_ground|nbv_recon_sampled_level' \
+  "$ROOT/bench/eval/experiment.sh" "$BUILD"
 # The added views below the base, per run (below_base.md).
 /usr/bin/python3 "$ROOT/bench/eval/below_base.py" "$OUT"

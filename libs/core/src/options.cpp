@@ -382,28 +382,18 @@ const OptionTable<SuggestOptions>& suggest_option_table() {
           "inside the mesh's volume, are rejected",
           closed(0, 10), [](const O& o) { return o.safety_distance; },
           [](O& o, double x) { o.safety_distance = x; }),
-      [] {
-        OptionSpec<O> s{"above_ground", OptionType::Bool, "Stay above the ground",
-                        "sampled, refined: no pose lower than the mesh's lowest point (its 1st "
-                        "percentile of heights along the existing views' level up) plus the safety "
-                        "distance, or than the lowest existing view where that is lower: "
-                        "photographs are taken above the ground the object stands on (off = the "
-                        "paper's whole hemisphere)",
-                        {}, {}, {}, {}};
-        s.get = [](const O& o) { return OptionValue(o.above_ground); };
-        s.set = [](O& o, const OptionValue& v) { o.above_ground = as_bool("above_ground", v); };
-        return s;
-      }(),
-      [] {
-        OptionSpec<O> s{"level_views", OptionType::Bool, "Level views",
-                        "sampled, refined: poses without roll, their image up towards the existing "
-                        "views' level up (the direction perpendicular to their right axes), as a "
-                        "gimbal takes photos (off = the paper's mean image up of the existing views)",
-                        {}, {}, {}, {}};
-        s.get = [](const O& o) { return OptionValue(o.level_views); };
-        s.set = [](O& o, const OptionValue& v) { o.level_views = as_bool("level_views", v); };
-        return s;
-      }(),
+      bool_option<O>("above_ground", "Stay above the ground",
+                     "sampled, refined: no pose lower than the mesh's lowest point (its 1st "
+                     "percentile of heights along the existing views' level up) plus the safety "
+                     "distance, or than the lowest existing view where that is lower: "
+                     "photographs are taken above the ground the object stands on (off = the "
+                     "paper's whole hemisphere)",
+                     &O::above_ground),
+      bool_option<O>("level_views", "Level views",
+                     "sampled, refined: poses without roll, their image up towards the existing "
+                     "views' level up (the direction perpendicular to their right axes), as a "
+                     "gimbal takes photos (off = the paper's mean image up of the existing views)",
+                     &O::level_views),
       int_option<O>(
           "refine_best", "Refined candidates", "refined: best sampled poses refined per suggestion",
           closed(1, 64), [](const O& o) { return o.refine_best; },
